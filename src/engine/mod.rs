@@ -1,0 +1,269 @@
+//! Engines walk the slider through time (MODEL.md section 1).
+//!
+//! * [`event`]: the exact event-driven engine. It finds every stick/slip
+//!   transition and every zero of the relative velocity by root finding on
+//!   the analytic signal and moves the slider in closed form between them.
+//! * [`trig_roots`]: all roots of a trigonometric polynomial in a period,
+//!   used once per signal to cut the period into monotone pieces.
+//! * [`bracket`]: a safeguarded Newton solver for one root in a bracket.
+//!
+//! The shared vocabulary lives here: the slider's [`Mode`], typed
+//! [`Event`]s, the exact [`Segment`]s handed to observers, and the work
+//! counters every run returns.
+
+use crate::error::SimulationError;
+use crate::observer::{Observer, PeriodEnd};
+use crate::signal::Signal;
+
+pub mod bracket;
+pub mod event;
+pub mod trig_roots;
+
+/// Direction of sliding, seen from the slider: `Forward` while the rod is
+/// faster (`v_R > v_S`, friction pushes the slider forward).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Direction {
+    /// `v_R > v_S`: slider acceleration `+a_d + g_t`.
+    Forward,
+    /// `v_R < v_S`: slider acceleration `-a_d + g_t`.
+    Backward,
+}
+
+impl Direction {
+    /// +1 for forward, -1 for backward.
+    pub fn sign(self) -> f64 {
+        match self {
+            Direction::Forward => 1.0,
+            Direction::Backward => -1.0,
+        }
+    }
+
+    /// The other direction.
+    pub fn reversed(self) -> Self {
+        match self {
+            Direction::Forward => Direction::Backward,
+            Direction::Backward => Direction::Forward,
+        }
+    }
+}
+
+/// The slider's mode (MODEL.md section 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// `v_S = v_R`, the slider follows the rod.
+    Stick,
+    /// Sliding with constant acceleration in the given direction.
+    Slip(Direction),
+}
+
+impl Mode {
+    /// Short name for reports: `stick`, `slip_forward`, `slip_backward`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Stick => "stick",
+            Mode::Slip(Direction::Forward) => "slip_forward",
+            Mode::Slip(Direction::Backward) => "slip_backward",
+        }
+    }
+}
+
+/// What happened at an event.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EventKind {
+    /// `a_R` left the stick band `[a_0^-, a_0^+]`.
+    StickToSlip {
+        /// Direction of the new slip.
+        to: Direction,
+    },
+    /// `v_rel` crossed zero with `a_R` inside the stick band.
+    SlipToStick,
+    /// `v_rel` crossed zero with `a_R` outside the band: slip the other way.
+    Reversal {
+        /// Direction of the new slip.
+        to: Direction,
+    },
+    /// `v_rel` touched zero without changing sign (a tangency, at a critical
+    /// point of `v_rel`).
+    Grazing {
+        /// The mode after the touch (`Stick` unless `mu_d = mu_0`).
+        then: Mode,
+    },
+    /// The rod position and velocity jumped (ideal signals).
+    Jump {
+        /// Rod position change (m).
+        dx: f64,
+        /// Rod velocity change (m/s).
+        dv: f64,
+        /// The mode after the jump.
+        then: Mode,
+    },
+}
+
+/// An event at time `(period - 1) T + phase`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Event {
+    /// Period index, 1-based.
+    pub period: u64,
+    /// Phase within the period, in `[0, T)` (s).
+    pub phase: f64,
+    /// What happened.
+    pub kind: EventKind,
+}
+
+/// Events counted by kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct EventCounts {
+    /// Stick to slip transitions.
+    pub stick_to_slip: u64,
+    /// Slip to stick transitions.
+    pub slip_to_stick: u64,
+    /// Slip reversals.
+    pub reversal: u64,
+    /// Tangential touches of `v_rel = 0`.
+    pub grazing: u64,
+    /// Rod jumps.
+    pub jump: u64,
+}
+
+impl EventCounts {
+    /// Counts one event.
+    pub fn add(&mut self, kind: &EventKind) {
+        match kind {
+            EventKind::StickToSlip { .. } => self.stick_to_slip += 1,
+            EventKind::SlipToStick => self.slip_to_stick += 1,
+            EventKind::Reversal { .. } => self.reversal += 1,
+            EventKind::Grazing { .. } => self.grazing += 1,
+            EventKind::Jump { .. } => self.jump += 1,
+        }
+    }
+
+    /// All events.
+    pub fn total(&self) -> u64 {
+        self.stick_to_slip + self.slip_to_stick + self.reversal + self.grazing + self.jump
+    }
+
+    /// Sum of two counts.
+    pub fn merged(&self, other: &EventCounts) -> EventCounts {
+        EventCounts {
+            stick_to_slip: self.stick_to_slip + other.stick_to_slip,
+            slip_to_stick: self.slip_to_stick + other.slip_to_stick,
+            reversal: self.reversal + other.reversal,
+            grazing: self.grazing + other.grazing,
+            jump: self.jump + other.jump,
+        }
+    }
+}
+
+/// Position and velocity of a body (m, m/s).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Kinematics {
+    /// Position (m).
+    pub x: f64,
+    /// Velocity (m/s).
+    pub v: f64,
+}
+
+/// A piece of the motion with one mode and no event inside, known exactly:
+/// in slip the slider's acceleration is constant, in stick it moves with
+/// the rod. Slider positions are relative to the slider's position at the
+/// start of the period.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Segment {
+    /// Period index, 1-based.
+    pub period: u64,
+    /// Start phase (s).
+    pub start: f64,
+    /// End phase (s), `>= start`.
+    pub end: f64,
+    /// Mode throughout.
+    pub mode: Mode,
+    /// Slider at the start.
+    pub slider_start: Kinematics,
+    /// Slider at the end.
+    pub slider_end: Kinematics,
+    /// Rod at the start (right limit).
+    pub rod_start: Kinematics,
+    /// Rod at the end (left limit).
+    pub rod_end: Kinematics,
+    /// Slider acceleration in slip (m/s^2); unused in stick.
+    pub slip_acceleration: f64,
+}
+
+impl Segment {
+    /// Duration (s).
+    pub fn duration(&self) -> f64 {
+        self.end - self.start
+    }
+
+    /// `integral |v_R - v_S| dt` over the segment, exact: `v_rel` keeps its
+    /// sign on a segment, so the integral is `|delta(x_R - x_S)|`; zero in
+    /// stick.
+    pub fn sliding_distance(&self) -> f64 {
+        match self.mode {
+            Mode::Stick => 0.0,
+            Mode::Slip(_) => ((self.rod_end.x - self.slider_end.x)
+                - (self.rod_start.x - self.slider_start.x))
+                .abs(),
+        }
+    }
+}
+
+/// Work counters of a run: what the result cost.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WorkCounters {
+    /// Events by kind.
+    pub events: EventCounts,
+    /// Periods simulated (transient, period-map evaluations and the
+    /// steady-state period together).
+    pub periods: u64,
+    /// Evaluations of the rod signal in root finding.
+    pub evaluations: u64,
+    /// Root-finder iterations.
+    pub root_iterations: u64,
+}
+
+impl WorkCounters {
+    /// Sum of two counters.
+    pub fn merged(&self, other: &WorkCounters) -> WorkCounters {
+        WorkCounters {
+            events: self.events.merged(&other.events),
+            periods: self.periods + other.periods,
+            evaluations: self.evaluations + other.evaluations,
+            root_iterations: self.root_iterations + other.root_iterations,
+        }
+    }
+}
+
+/// How a slider starts a period.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PeriodStart {
+    /// Slider velocity at the period start, before a rod jump at phase 0.
+    pub velocity: f64,
+    /// The mode the previous period ended in; `None` for the first period
+    /// or a period-map evaluation, where the mode follows from `velocity`.
+    pub mode: Option<Mode>,
+}
+
+/// An engine that advances the slider by whole periods: the event engine
+/// or the fixed-step reference. The steady-state and start-up analysis
+/// ([`crate::indicators`]) works with any of them.
+pub trait PeriodEngine {
+    /// The rod signal.
+    fn signal(&self) -> &Signal;
+
+    /// Simulates one period from `start`, handing segments, events and the
+    /// period end to `observer`. `period` is 1-based; period 1 starts from
+    /// rest at `x_R = 0`.
+    fn run_period<O: Observer>(
+        &mut self,
+        period: u64,
+        start: PeriodStart,
+        observer: &mut O,
+    ) -> Result<PeriodEnd, SimulationError>;
+
+    /// Work done so far.
+    fn counters(&self) -> WorkCounters;
+
+    /// Below this `|v_rel|` (m/s) counts as zero.
+    fn zero_velocity_tolerance(&self) -> f64;
+}

@@ -1,0 +1,176 @@
+//! Typed errors. Each subsystem has its own enum with structured fields;
+//! [`Error`] gathers them for callers that do not care which one failed.
+//!
+//! Parameter errors always carry the offending field's path as it is
+//! spelled in a scene file (`motor.slider_mass`, `signal.harmonics`) and the
+//! value, so that a message can be acted on without reading the code.
+
+use thiserror::Error;
+
+/// An invalid parameter value, named by its scene path.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ParamError {
+    /// NaN or infinite.
+    #[error("{field} = {value}: must be a finite number")]
+    NonFinite {
+        /// Scene path of the field.
+        field: String,
+        /// The value given.
+        value: f64,
+    },
+    /// Zero or negative where a positive value is required.
+    #[error("{field} = {value}: must be positive")]
+    NotPositive {
+        /// Scene path of the field.
+        field: String,
+        /// The value given.
+        value: f64,
+    },
+    /// Outside its allowed range.
+    #[error("{field} = {value}: {requirement}")]
+    OutOfRange {
+        /// Scene path of the field.
+        field: String,
+        /// The value given.
+        value: f64,
+        /// What the value must satisfy.
+        requirement: String,
+    },
+    /// A combination of fields that does not fit together.
+    #[error("{field}: {reason}")]
+    Inconsistent {
+        /// Scene path of the field.
+        field: String,
+        /// Why it does not fit.
+        reason: String,
+    },
+}
+
+impl ParamError {
+    /// Checks that `value` is finite.
+    pub fn finite(field: &str, value: f64) -> Result<f64, ParamError> {
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(ParamError::NonFinite {
+                field: field.to_owned(),
+                value,
+            })
+        }
+    }
+
+    /// Checks that `value` is finite and strictly positive.
+    pub fn positive(field: &str, value: f64) -> Result<f64, ParamError> {
+        Self::finite(field, value)?;
+        if value > 0.0 {
+            Ok(value)
+        } else {
+            Err(ParamError::NotPositive {
+                field: field.to_owned(),
+                value,
+            })
+        }
+    }
+
+    /// Checks that `value` is finite and not negative.
+    pub fn non_negative(field: &str, value: f64) -> Result<f64, ParamError> {
+        Self::finite(field, value)?;
+        if value >= 0.0 {
+            Ok(value)
+        } else {
+            Err(ParamError::OutOfRange {
+                field: field.to_owned(),
+                value,
+                requirement: "must not be negative".to_owned(),
+            })
+        }
+    }
+
+    /// An out-of-range error with a free-form requirement.
+    pub fn out_of_range(field: &str, value: f64, requirement: impl Into<String>) -> Self {
+        ParamError::OutOfRange {
+            field: field.to_owned(),
+            value,
+            requirement: requirement.into(),
+        }
+    }
+}
+
+/// Failures of a simulation run (after the scene was accepted).
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum SimulationError {
+    /// The period map has no fixed point: the slider does not settle into a
+    /// periodic motion but keeps accelerating in one direction.
+    #[error(
+        "no periodic steady state: the slider velocity keeps {direction} \
+         (boundary velocity {velocity} m/s after {periods} periods)"
+    )]
+    NoSteadyState {
+        /// "growing" or "falling".
+        direction: &'static str,
+        /// Last boundary velocity seen.
+        velocity: f64,
+        /// Periods simulated.
+        periods: u64,
+    },
+    /// More events in one period than the engine allows: the motion
+    /// chatters (Zeno behaviour) at the given place.
+    #[error(
+        "more than {limit} events in period {period} (last at phase {phase} s): \
+         the motion chatters"
+    )]
+    TooManyEvents {
+        /// The per-period event limit.
+        limit: u64,
+        /// Period index (1-based).
+        period: u64,
+        /// Phase of the last event in that period, s.
+        phase: f64,
+    },
+    /// The signal's event structure could not be computed.
+    #[error("signal analysis failed: {0}")]
+    Signal(String),
+}
+
+/// Scene files: reading, parsing and validating.
+#[derive(Debug, Error)]
+pub enum SceneError {
+    /// The file could not be read.
+    #[error("cannot read scene file {path}: {source}")]
+    Io {
+        /// The path given.
+        path: String,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// Not valid TOML, an unknown field, or a value of the wrong type.
+    #[error("invalid scene {path}: {message}")]
+    Parse {
+        /// The path given (or `<string>`).
+        path: String,
+        /// The parser's message, which names the field and line.
+        message: String,
+    },
+    /// A value that parses but is not allowed.
+    #[error("invalid scene {path}: {source}")]
+    Param {
+        /// The path given (or `<string>`).
+        path: String,
+        /// The offending field and value.
+        source: ParamError,
+    },
+}
+
+/// Any error of the crate.
+#[derive(Debug, Error)]
+pub enum Error {
+    /// Bad parameter value.
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    /// A run that could not finish.
+    #[error(transparent)]
+    Simulation(#[from] SimulationError),
+    /// A scene that could not be loaded.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+}

@@ -1,0 +1,483 @@
+//! Performance indicators (MODEL.md section 3; the paper's sections 6.1,
+//! 6.2): start-up from rest and the periodic steady state.
+//!
+//! Per period `p` (`t` in `[(p-1)T, pT]`):
+//! * step `x_p = x_S(pT) - x_S((p-1)T)`, mean velocity `v_p = x_p / T`;
+//! * smoothness (16) `zeta_p = |v_p| / (max_p v_S - min_p v_S)`, with exact
+//!   extrema: segment ends, and in stick the zeros of `a_R`;
+//! * sliding distance `integral |v_R - v_S| dt`, exact per segment
+//!   (`|delta(x_R - x_S)|`) plus `|delta x_R|` at rod jumps, giving the wear
+//!   volume (17) `V_p / w = F_c x` this, the durability (18)
+//!   `delta_p = x_p / (F_c integral |v_rel|)` and the friction energy (19)
+//!   `W_f,p = mu_d F_c integral |v_rel|`;
+//! * time in stick.
+//!
+//! **Steady state** is the periodic orbit of the period map
+//! `P: v_S((p-1)T) -> v_S(pT)`. `P` is non-decreasing and non-expansive
+//! (two sliders on the same rod never overtake each other, and friction
+//! only brings their velocities together), so `g(v) = P(v) - v` is
+//! non-increasing and its zero is found by safeguarded Newton in a bracket,
+//! with `P'(v)` carried exactly through the period by the engine. The
+//! transient from rest is simulated independently until its own
+//! period-to-period changes have died out; the two steady states must agree.
+//!
+//! **Start-up** `p_0.99` is the first period with `v_p >= 0.99 v_inf`
+//! (for a slider that moves backwards, `v_p <= 0.99 v_inf`).
+
+use crate::engine::{EventCounts, Mode, PeriodEngine, PeriodStart, Segment};
+use crate::error::SimulationError;
+use crate::motor::Motor;
+use crate::observer::{Observer, PeriodEnd};
+use crate::signal::{Partition, Signal};
+
+/// What the per-period statistics should include beyond the step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct StatsWanted {
+    /// Velocity extrema for smoothness (16).
+    pub smoothness: bool,
+    /// Sliding distance for wear (17), durability (18), friction energy (19).
+    pub sliding: bool,
+    /// Time in stick.
+    pub stiction: bool,
+}
+
+impl StatsWanted {
+    /// Everything.
+    pub const ALL: StatsWanted = StatsWanted {
+        smoothness: true,
+        sliding: true,
+        stiction: true,
+    };
+}
+
+/// Statistics of one period.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PeriodStats {
+    /// Step `x_p` (m).
+    pub step: f64,
+    /// Smallest slider velocity in the period (m/s), if asked.
+    pub v_min: f64,
+    /// Largest slider velocity in the period (m/s), if asked.
+    pub v_max: f64,
+    /// `integral |v_R - v_S| dt` over the period (m), if asked.
+    pub sliding_distance: f64,
+    /// Time in stick (s), if asked.
+    pub stick_time: f64,
+    /// Events in the period.
+    pub events: EventCounts,
+}
+
+/// Observer that accumulates [`PeriodStats`] for the current period.
+#[derive(Debug, Clone)]
+pub struct StatsObserver {
+    wanted: StatsWanted,
+    /// Zeros of `a_R` (velocity extrema of a stuck slider), when smoothness
+    /// is wanted.
+    accel_zeros: Option<Partition>,
+    current: PeriodStats,
+    /// The statistics of the last finished period.
+    pub last: PeriodStats,
+}
+
+impl StatsObserver {
+    /// An observer for `signal` collecting what is wanted.
+    pub fn new(signal: &Signal, wanted: StatsWanted) -> Self {
+        Self {
+            wanted,
+            accel_zeros: wanted.smoothness.then(|| signal.partition(0.0)),
+            current: Self::fresh(),
+            last: Self::fresh(),
+        }
+    }
+
+    fn fresh() -> PeriodStats {
+        PeriodStats {
+            v_min: f64::INFINITY,
+            v_max: f64::NEG_INFINITY,
+            ..Default::default()
+        }
+    }
+}
+
+impl Observer for StatsObserver {
+    fn wants_segments(&self) -> bool {
+        self.wanted.smoothness || self.wanted.sliding || self.wanted.stiction
+    }
+
+    #[inline]
+    fn segment(&mut self, segment: &Segment, signal: &Signal) {
+        let c = &mut self.current;
+        if self.wanted.sliding {
+            c.sliding_distance += segment.sliding_distance();
+        }
+        if self.wanted.stiction && segment.mode == Mode::Stick {
+            c.stick_time += segment.duration();
+        }
+        if self.wanted.smoothness {
+            for v in [segment.slider_start.v, segment.slider_end.v] {
+                c.v_min = c.v_min.min(v);
+                c.v_max = c.v_max.max(v);
+            }
+            if segment.mode == Mode::Stick
+                && let Some(zeros) = &self.accel_zeros
+            {
+                // v_S = v_R: interior extrema where a_R changes sign.
+                let first = zeros.locate(segment.start);
+                for piece in &zeros.pieces[first + 1..] {
+                    if piece.start >= segment.end {
+                        break;
+                    }
+                    let v = signal.velocity(piece.start);
+                    c.v_min = c.v_min.min(v);
+                    c.v_max = c.v_max.max(v);
+                }
+            }
+        }
+    }
+
+    #[inline]
+    fn event(&mut self, event: &crate::engine::Event) {
+        self.current.events.add(&event.kind);
+        if let crate::engine::EventKind::Jump { dx, .. } = event.kind
+            && self.wanted.sliding
+        {
+            // The rod slides |dx| past the slider in zero time.
+            self.current.sliding_distance += dx.abs();
+        }
+    }
+
+    #[inline]
+    fn period_end(&mut self, end: &PeriodEnd) {
+        self.current.step = end.step;
+        self.last = self.current;
+        self.current = Self::fresh();
+    }
+}
+
+/// The periodic steady state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SteadyState {
+    /// Slider velocity at the period boundary on the periodic orbit (m/s).
+    pub boundary_velocity: f64,
+    /// `P'` at the fixed point (0 if the orbit sticks).
+    pub map_derivative: f64,
+    /// Steady-state velocity `v_inf = x_inf / T` (m/s).
+    pub v_inf: f64,
+    /// Statistics of one steady-state period.
+    pub stats: PeriodStats,
+    /// Newton/bisection iterations of the fixed-point search.
+    pub iterations: u32,
+    /// Size of the last fixed-point correction (m/s).
+    pub last_correction: f64,
+}
+
+/// The start-up from rest.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Transient {
+    /// Mean velocity `v_p` of every simulated period, `p = 1..`.
+    pub mean_velocities: Vec<f64>,
+    /// Slider velocity at the end of the last simulated period.
+    pub final_velocity: f64,
+    /// Mode at the end of the last simulated period.
+    pub final_mode: Mode,
+    /// True if the period-to-period change died out before the limit.
+    pub converged: bool,
+    /// Time in stick over the whole transient (s), if asked.
+    pub stick_time: f64,
+    /// Time in stick in every period (s), if asked.
+    pub stick_times: Vec<f64>,
+    /// Events over the whole transient.
+    pub events: EventCounts,
+}
+
+impl Transient {
+    /// Periods simulated.
+    pub fn periods(&self) -> u64 {
+        self.mean_velocities.len() as u64
+    }
+
+    /// `v_p` of the last simulated period: the transient's estimate of
+    /// `v_inf`.
+    pub fn v_inf(&self) -> f64 {
+        self.mean_velocities.last().copied().unwrap_or(0.0)
+    }
+
+    /// `p_0.99` for a given `v_inf`: the first period with
+    /// `v_p >= 0.99 v_inf` (`<=` when `v_inf < 0`); `None` if `v_inf = 0`
+    /// or it was not reached.
+    pub fn startup_periods(&self, v_inf: f64) -> Option<u64> {
+        if v_inf == 0.0 {
+            return None;
+        }
+        let target = 0.99 * v_inf;
+        self.mean_velocities
+            .iter()
+            .position(|v| if v_inf > 0.0 { *v >= target } else { *v <= target })
+            .map(|i| i as u64 + 1)
+    }
+}
+
+/// Settings of the analysis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AnalysisOptions {
+    /// Longest transient simulated (periods).
+    pub max_periods: u64,
+    /// The transient stops once its estimated distance to the steady state,
+    /// relative to `max |v_R|`, is below this.
+    pub transient_tolerance: f64,
+}
+
+impl Default for AnalysisOptions {
+    fn default() -> Self {
+        Self {
+            max_periods: 1_000_000,
+            transient_tolerance: 1e-14,
+        }
+    }
+}
+
+/// Simulates the start-up from rest with `observer` attached, until the
+/// boundary velocity has converged (or `max_periods`).
+pub fn transient<E: PeriodEngine, O: Observer>(
+    engine: &mut E,
+    options: &AnalysisOptions,
+    wanted: StatsWanted,
+    observer: &mut O,
+) -> Result<Transient, SimulationError> {
+    let v_scale = engine.signal().velocity_scale();
+    let period = engine.signal().period();
+    let tol = options.transient_tolerance * v_scale;
+    let mut stats = StatsObserver::new(
+        engine.signal(),
+        StatsWanted {
+            stiction: wanted.stiction,
+            ..Default::default()
+        },
+    );
+    let mut start = PeriodStart {
+        velocity: 0.0,
+        mode: None,
+    };
+    let mut mean_velocities = Vec::new();
+    let mut last_change: Option<f64> = None;
+    let mut converged = false;
+    let mut stick_time = 0.0;
+    let mut stick_times = Vec::new();
+    let mut events = EventCounts::default();
+    let mut p = 0u64;
+    while p < options.max_periods {
+        p += 1;
+        let end = engine.run_period(p, start, &mut (&mut stats, &mut *observer))?;
+        mean_velocities.push(end.step / period);
+        stick_time += stats.last.stick_time;
+        if wanted.stiction {
+            stick_times.push(stats.last.stick_time);
+        }
+        events = events.merged(&stats.last.events);
+        let change = end.velocity - start.velocity;
+        start = PeriodStart {
+            velocity: end.velocity,
+            mode: Some(end.mode),
+        };
+        if p >= 2 {
+            if change == 0.0 {
+                converged = true;
+                break;
+            }
+            if let Some(before) = last_change {
+                // Geometric tail: remaining distance ~ |change| rho / (1 - rho).
+                let rho = (change / before).abs();
+                if rho < 1.0 && change.abs() * rho / (1.0 - rho) <= tol && change.abs() <= tol {
+                    converged = true;
+                    break;
+                }
+            }
+        }
+        last_change = Some(change);
+    }
+    Ok(Transient {
+        mean_velocities,
+        final_velocity: start.velocity,
+        final_mode: start.mode.unwrap_or(Mode::Stick),
+        converged,
+        stick_time,
+        stick_times,
+        events,
+    })
+}
+
+/// `P(v)` and `P'(v)`.
+fn period_map<E: PeriodEngine>(engine: &mut E, v: f64) -> Result<(f64, f64), SimulationError> {
+    let end = engine.run_period(
+        2,
+        PeriodStart {
+            velocity: v,
+            mode: None,
+        },
+        &mut (),
+    )?;
+    Ok((end.velocity, end.map_derivative))
+}
+
+/// Largest number of bracket expansions before the search gives up and
+/// reports that the slider runs away.
+const MAX_EXPANSIONS: u32 = 60;
+/// Iteration limit of the fixed-point search.
+const MAX_FIXED_POINT_ITERATIONS: u32 = 200;
+
+/// The fixed point of the period map nearest to `guess` in the direction
+/// the map moves it (the one a slider starting at `guess` converges to).
+pub fn fixed_point<E: PeriodEngine>(
+    engine: &mut E,
+    guess: f64,
+) -> Result<(f64, f64, u32, f64), SimulationError> {
+    let (lo_r, hi_r) = engine.signal().velocity_range();
+    let span = (hi_r - lo_r).max(f64::MIN_POSITIVE);
+    let (p0, d0) = period_map(engine, guess)?;
+    let g0 = p0 - guess;
+    if g0 == 0.0 {
+        return Ok((guess, d0, 0, 0.0));
+    }
+    // Bracket [lo, hi] with g(lo) > 0 >= g(hi); g is non-increasing.
+    let (mut lo, mut hi);
+    let mut step = span;
+    if g0 > 0.0 {
+        lo = guess;
+        hi = guess.max(hi_r);
+        let mut n = 0;
+        loop {
+            let (p, _) = period_map(engine, hi)?;
+            if p - hi <= 0.0 {
+                break;
+            }
+            lo = hi;
+            hi += step;
+            step *= 2.0;
+            n += 1;
+            if n > MAX_EXPANSIONS {
+                return Err(SimulationError::NoSteadyState {
+                    direction: "growing",
+                    velocity: hi,
+                    periods: engine.counters().periods,
+                });
+            }
+        }
+    } else {
+        hi = guess;
+        lo = guess.min(lo_r);
+        let mut n = 0;
+        loop {
+            let (p, _) = period_map(engine, lo)?;
+            if p - lo > 0.0 {
+                break;
+            }
+            hi = lo;
+            lo -= step;
+            step *= 2.0;
+            n += 1;
+            if n > MAX_EXPANSIONS {
+                return Err(SimulationError::NoSteadyState {
+                    direction: "falling",
+                    velocity: lo,
+                    periods: engine.counters().periods,
+                });
+            }
+        }
+    }
+    let tiny = 4.0 * f64::EPSILON * span;
+    let (mut v, mut g, mut dp) = (guess, g0, d0);
+    let mut correction = f64::INFINITY;
+    for iteration in 1..=MAX_FIXED_POINT_ITERATIONS {
+        let newton = v - g / (dp - 1.0);
+        let next = if newton.is_finite() && newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        correction = (next - v).abs();
+        v = next;
+        let (p, d) = period_map(engine, v)?;
+        g = p - v;
+        dp = d;
+        if g == 0.0 {
+            return Ok((v, dp, iteration, correction));
+        }
+        if g > 0.0 {
+            lo = v;
+        } else {
+            hi = v;
+        }
+        if correction <= tiny.max(4.0 * f64::EPSILON * v.abs()) || hi - lo <= tiny {
+            return Ok((v, dp, iteration, correction));
+        }
+    }
+    Ok((v, dp, MAX_FIXED_POINT_ITERATIONS, correction))
+}
+
+/// The steady state reached from `guess`, with one period observed by
+/// `observer`.
+pub fn steady_state<E: PeriodEngine, O: Observer>(
+    engine: &mut E,
+    guess: f64,
+    wanted: StatsWanted,
+    observer: &mut O,
+) -> Result<SteadyState, SimulationError> {
+    let (v_star, map_derivative, iterations, last_correction) = fixed_point(engine, guess)?;
+    let mut stats = StatsObserver::new(engine.signal(), wanted);
+    let end = engine.run_period(
+        2,
+        PeriodStart {
+            velocity: v_star,
+            mode: None,
+        },
+        &mut (&mut stats, observer),
+    )?;
+    let period = engine.signal().period();
+    Ok(SteadyState {
+        boundary_velocity: v_star,
+        map_derivative,
+        v_inf: end.step / period,
+        stats: stats.last,
+        iterations,
+        last_correction,
+    })
+}
+
+/// Indicators derived from a steady-state period.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SteadyIndicators {
+    /// `v_inf` (m/s).
+    pub v_inf: f64,
+    /// Smoothness `zeta_inf` (16).
+    pub smoothness: f64,
+    /// Durability `delta_inf` (18), 1/N.
+    pub durability: f64,
+    /// Friction energy per period `W_f` (19), J.
+    pub friction_energy: f64,
+    /// Time in stick / period in steady state.
+    pub stiction_fraction: f64,
+}
+
+impl SteadyState {
+    /// The paper's indicators for this steady state and motor.
+    pub fn indicators(&self, motor: &Motor, period: f64) -> SteadyIndicators {
+        let s = &self.stats;
+        let spread = s.v_max - s.v_min;
+        let wear_force = motor.contact_force() * s.sliding_distance;
+        SteadyIndicators {
+            v_inf: self.v_inf,
+            smoothness: if spread > 0.0 {
+                self.v_inf.abs() / spread
+            } else {
+                f64::INFINITY
+            },
+            durability: if wear_force > 0.0 {
+                s.step / wear_force
+            } else {
+                f64::INFINITY
+            },
+            friction_energy: motor.mu_d() * wear_force,
+            stiction_fraction: s.stick_time / period,
+        }
+    }
+}

@@ -1,0 +1,895 @@
+//! Scene files: what to simulate and what to report, in TOML.
+//!
+//! A scene is read in two steps, so that nothing unchecked reaches the
+//! simulation: serde reads the text into a [`SceneFile`], which mirrors the
+//! format and rejects unknown fields, and [`Scene::try_from`] checks every
+//! value and builds the typed [`Scene`]. The field names are the user-facing
+//! contract of `INTERFACE.md` and do not change.
+//!
+//! # Format
+//!
+//! All values in SI units. Every table may be omitted: without `[motor]`
+//! the paper's motor ([`MotorParams::default`]), without `[signal]` the
+//! paper's signal ([`SignalSpec::paper_default`]), without `[actuator]` no
+//! power outputs. An empty file is therefore [`Scene::default`] without its
+//! actuator; `examples/scenes/paper_default.toml` is `Scene::default()`
+//! written out.
+//!
+//! ```toml
+//! [motor]                     # omitted: the paper's motor (MotorParams::default)
+//! slider_mass = 1.4e-3        # m_s, kg, > 0                       (required)
+//! contact_force = 1.0         # F_c, N, > 0                         (required)
+//! mu_static = 0.1736          # mu_0, >= 0                          (required)
+//! mu_dynamic = 0.1568         # mu_d, 0 <= mu_d <= mu_0             (required)
+//! extra_acceleration = 0.0    # g_t, m/s^2, finite                  (default 0)
+//!
+//! [signal]                    # omitted: the paper's signal (SignalSpec::paper_default)
+//! kind = "fourier"            # "fourier" | "ideal" | "harmonics"   (required)
+//! # kind = "fourier" and kind = "ideal":
+//! stroke = 25e-6              # x_Rmax, m, > 0                      (required)
+//! sqrt_kappa = 6.0            # or kappa = 36.0: exactly one of the two, > 0
+//! duty = 1.0                  # t_1 / T in (0, 1]; 1 = continuous   (default 1)
+//! # kind = "fourier" only:
+//! harmonics = 2               # n, 1..=256                          (required)
+//! sigma = true                # Lanczos sigma factors (15)          (default false)
+//! # kind = "harmonics" only (x_R = sum_k d_k sin(k w_0 t + phi_k)):
+//! # frequency = 1574.8        # f_0, Hz, > 0                        (required)
+//! # amplitudes = [..]         # d_k, m, >= 0, not all 0             (required)
+//! # phases = [..]             # phi_k, rad, as many as amplitudes   (required)
+//! # scale_to_stroke = false   # scale so that max - min = stroke    (default false)
+//! # stroke = 25e-6            # m: required with scale_to_stroke = true, refused otherwise
+//! # shift_to_minimum = true   # minimum at t = 0 with x_R = 0       (default true)
+//!
+//! [actuator]                  # optional; all five fields required when given
+//! mass = 3.2e-3               # M, kg, > 0
+//! damping = 9.50              # d, N s/m, > 0
+//! stiffness = 24.6e6          # c, N/m, > 0
+//! transfer_factor = 1.985     # alpha, N/V, > 0
+//! capacitance = 800e-9        # C, F, > 0
+//!
+//! [run]                       # optional
+//! engine = "event"            # "event" | "fixed"                   (default "event")
+//! steps_per_harmonic = 5000   # fixed-step engine: steps per period of the
+//!                             # highest harmonic, >= 1               (default 5000)
+//! max_periods = 1000000       # transient limit, >= 1               (default 1000000)
+//!
+//! [outputs]                   # optional
+//! indicators = ["v_inf", "startup_time", "smoothness", "durability",
+//!               "friction_energy", "stiction_fraction", "velocity_per_power"]
+//! trajectory = false          # record the steady-state period's trajectory
+//! events = false              # record the event log
+//! ```
+//!
+//! # Rules
+//!
+//! * Unknown fields, in any table or at the top level, are errors; so are
+//!   fields that do not belong to the chosen signal `kind` (`harmonics`
+//!   with `kind = "ideal"`, `duty` with `kind = "harmonics"`, ...).
+//! * Integers are accepted where numbers are expected (`contact_force = 1`).
+//!   `nan` and `inf` are valid TOML floats; they are refused with the field's
+//!   name.
+//! * Without an `indicators` list, every indicator the scene allows is
+//!   computed: all of [`Indicator::ALL`], except `velocity_per_power` unless
+//!   an `[actuator]` is given and the signal is not `kind = "ideal"` (the
+//!   ideal signal has infinitely many harmonics, so its input power (35) is
+//!   undefined). Asking for `velocity_per_power` explicitly without an
+//!   actuator or with the ideal signal is an error. An empty list asks for
+//!   no indicators; a name may appear once.
+//! * `sigma` defaults to `false`, the plain partial sums (8), which are what
+//!   the signal *is* without the paper's modification (15); the paper's
+//!   default scene sets it explicitly.
+//!
+//! # Errors
+//!
+//! Malformed TOML, unknown fields and values of the wrong type give
+//! [`SceneError::Parse`], whose one-line message names the field path, the
+//! parser's complaint and the line and column. Values that parse but are not
+//! allowed give [`SceneError::Param`], naming the field path and value
+//! (`motor.slider_mass = -1: must be positive`). An unreadable file gives
+//! [`SceneError::Io`].
+
+use crate::error::{ParamError, SceneError};
+use crate::motor::{Motor, MotorParams};
+use crate::power::ActuatorParams;
+use crate::signal::{IdealShape, MAX_HARMONICS, SignalSpec};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::ops::Range;
+use std::path::Path;
+use std::str::FromStr;
+use thiserror::Error;
+use toml::de::{DeTable, DeValue};
+
+/// The scene file as written: every table and optional field as an
+/// `Option`, no value checked yet. Convert with [`Scene::try_from`].
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// `[motor]`; `None`: the paper's motor.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motor: Option<MotorTable>,
+    /// `[signal]`; `None`: the paper's signal.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub signal: Option<SignalTable>,
+    /// `[actuator]`; `None`: no power outputs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub actuator: Option<ActuatorParams>,
+    /// `[run]`; `None`: default run settings.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub run: Option<RunTable>,
+    /// `[outputs]`; `None`: everything the scene allows.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outputs: Option<OutputsTable>,
+}
+
+/// The `[motor]` table (SI units).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotorTable {
+    /// `m_s`, kg.
+    pub slider_mass: f64,
+    /// `F_c`, N.
+    pub contact_force: f64,
+    /// `mu_0`.
+    pub mu_static: f64,
+    /// `mu_d`.
+    pub mu_dynamic: f64,
+    /// `g_t`, m/s^2 (default 0).
+    #[serde(default)]
+    pub extra_acceleration: f64,
+}
+
+/// The signal `kind` of a scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SignalKind {
+    /// The frequency-limited approximation (8) of the ideal signal.
+    Fourier,
+    /// The ideal signal (11).
+    Ideal,
+    /// An explicit harmonic series.
+    Harmonics,
+}
+
+impl SignalKind {
+    /// The spelling in a scene file.
+    pub fn name(self) -> &'static str {
+        match self {
+            SignalKind::Fourier => "fourier",
+            SignalKind::Ideal => "ideal",
+            SignalKind::Harmonics => "harmonics",
+        }
+    }
+}
+
+/// The `[signal]` table: the union of the fields of all kinds; which ones
+/// are allowed depends on `kind` (see the module docs).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SignalTable {
+    /// Which signal.
+    pub kind: SignalKind,
+    /// `x_Rmax`, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stroke: Option<f64>,
+    /// `sqrt(kappa)`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sqrt_kappa: Option<f64>,
+    /// `kappa = a_R / a_0`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kappa: Option<f64>,
+    /// `n` (read as a signed integer so that `-1` is a value error, not a
+    /// type error).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub harmonics: Option<i64>,
+    /// Lanczos sigma factors (15).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sigma: Option<bool>,
+    /// `t_1 / T`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub duty: Option<f64>,
+    /// `f_0`, Hz.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frequency: Option<f64>,
+    /// `d_k`, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub amplitudes: Option<Vec<f64>>,
+    /// `phi_k`, rad.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub phases: Option<Vec<f64>>,
+    /// Scale the amplitudes to `stroke`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale_to_stroke: Option<bool>,
+    /// Shift the minimum to `t = 0`, `x_R = 0`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shift_to_minimum: Option<bool>,
+}
+
+/// Which engine runs the scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum EngineKind {
+    /// The exact event-driven engine.
+    #[default]
+    Event,
+    /// The fixed-step reference (the paper's method, section 7).
+    Fixed,
+}
+
+impl EngineKind {
+    /// The spelling in a scene file.
+    pub fn name(self) -> &'static str {
+        match self {
+            EngineKind::Event => "event",
+            EngineKind::Fixed => "fixed",
+        }
+    }
+}
+
+/// The `[run]` table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunTable {
+    /// Engine (default `event`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub engine: Option<EngineKind>,
+    /// Fixed-step engine: steps per period of the highest harmonic.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps_per_harmonic: Option<i64>,
+    /// Largest number of periods of the transient.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_periods: Option<i64>,
+}
+
+/// The `[outputs]` table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputsTable {
+    /// Indicator names; `None`: all the scene allows.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub indicators: Option<Vec<String>>,
+    /// Record the steady-state period's trajectory (default false).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub trajectory: Option<bool>,
+    /// Record the event log (default false).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub events: Option<bool>,
+}
+
+/// A performance indicator a scene can ask for (MODEL.md sections 3, 4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Indicator {
+    /// Steady-state mean slider velocity `v_inf` (m/s).
+    VInf,
+    /// Start-up time `T p_0.99` (s).
+    StartupTime,
+    /// Steady-state smoothness `zeta` (16).
+    Smoothness,
+    /// Steady-state durability `delta` (18) (1/N).
+    Durability,
+    /// Steady-state friction energy per period `W_f` (19) (J).
+    FrictionEnergy,
+    /// Time stuck / simulated time.
+    StictionFraction,
+    /// `v_inf / S` with the apparent power `S` (35) (m/(s VA)).
+    VelocityPerPower,
+}
+
+/// A name that is not an [`Indicator`].
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("unknown indicator \"{name}\"; valid names: {valid}", valid = Indicator::valid_names())]
+pub struct UnknownIndicator {
+    /// The name given.
+    pub name: String,
+}
+
+impl Indicator {
+    /// Every indicator, in the order of `INTERFACE.md`.
+    pub const ALL: [Indicator; 7] = [
+        Indicator::VInf,
+        Indicator::StartupTime,
+        Indicator::Smoothness,
+        Indicator::Durability,
+        Indicator::FrictionEnergy,
+        Indicator::StictionFraction,
+        Indicator::VelocityPerPower,
+    ];
+
+    /// The name in scene files and JSON output.
+    pub fn name(self) -> &'static str {
+        match self {
+            Indicator::VInf => "v_inf",
+            Indicator::StartupTime => "startup_time",
+            Indicator::Smoothness => "smoothness",
+            Indicator::Durability => "durability",
+            Indicator::FrictionEnergy => "friction_energy",
+            Indicator::StictionFraction => "stiction_fraction",
+            Indicator::VelocityPerPower => "velocity_per_power",
+        }
+    }
+
+    /// All names, comma separated.
+    pub fn valid_names() -> String {
+        Self::ALL.map(Self::name).join(", ")
+    }
+
+    /// Why this indicator cannot be computed for the given signal and
+    /// actuator, or `None` if it can.
+    pub fn unavailable_because(
+        self,
+        signal: &SignalSpec,
+        actuator: Option<&ActuatorParams>,
+    ) -> Option<&'static str> {
+        if self != Indicator::VelocityPerPower {
+            return None;
+        }
+        if actuator.is_none() {
+            Some("velocity_per_power needs an [actuator] table")
+        } else if matches!(signal, SignalSpec::Ideal(_)) {
+            Some(
+                "velocity_per_power is undefined for kind = \"ideal\": the ideal \
+                 signal has infinitely many harmonics, so its input power (35) is not finite",
+            )
+        } else {
+            None
+        }
+    }
+
+    /// The indicators a scene with this signal and actuator can compute,
+    /// in the order of [`Indicator::ALL`].
+    pub fn available(signal: &SignalSpec, actuator: Option<&ActuatorParams>) -> Vec<Indicator> {
+        Self::ALL
+            .into_iter()
+            .filter(|i| i.unavailable_because(signal, actuator).is_none())
+            .collect()
+    }
+}
+
+impl fmt::Display for Indicator {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Indicator {
+    type Err = UnknownIndicator;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|i| i.name() == s)
+            .ok_or_else(|| UnknownIndicator { name: s.to_owned() })
+    }
+}
+
+/// How to run a scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RunSettings {
+    /// Which engine.
+    pub engine: EngineKind,
+    /// Fixed-step engine: steps per period of the highest harmonic (>= 1).
+    /// The paper used 5000 (section 7).
+    pub steps_per_harmonic: u32,
+    /// Largest number of transient periods simulated (>= 1).
+    pub max_periods: u64,
+}
+
+impl Default for RunSettings {
+    /// The event engine; 5000 steps per harmonic; 1 000 000 periods.
+    fn default() -> Self {
+        Self {
+            engine: EngineKind::Event,
+            steps_per_harmonic: 5000,
+            max_periods: 1_000_000,
+        }
+    }
+}
+
+/// What a run records and reports.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Outputs {
+    /// Indicators to compute, each at most once.
+    pub indicators: Vec<Indicator>,
+    /// Record the steady-state period's trajectory.
+    pub trajectory: bool,
+    /// Record the event log.
+    pub events: bool,
+}
+
+/// A validated scene: motor, signal, optional actuator, run settings and
+/// outputs.
+///
+/// The fields are public for programmatic scenes (sweeps); after changing
+/// them, [`Scene::validate`] checks the same rules as a scene file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// The motor (`[motor]`).
+    pub motor: MotorParams,
+    /// The rod signal (`[signal]`).
+    pub signal: SignalSpec,
+    /// The actuator model, needed for power outputs (`[actuator]`).
+    pub actuator: Option<ActuatorParams>,
+    /// How to run (`[run]`).
+    pub run: RunSettings,
+    /// What to report (`[outputs]`).
+    pub outputs: Outputs,
+}
+
+impl Default for Scene {
+    /// The paper's example (MODEL.md section 6): its motor, `n = 2`,
+    /// `sqrt(kappa) = 6`, sigma factors, stroke 25 um, the Table 1 actuator,
+    /// the event engine and every indicator.
+    fn default() -> Self {
+        Self {
+            motor: MotorParams::default(),
+            signal: SignalSpec::paper_default(),
+            actuator: Some(ActuatorParams::default()),
+            run: RunSettings::default(),
+            outputs: Outputs {
+                indicators: Indicator::ALL.to_vec(),
+                trajectory: false,
+                events: false,
+            },
+        }
+    }
+}
+
+impl Scene {
+    /// Parses and validates a scene from TOML text; `origin` names the
+    /// source in error messages (a path, or `<string>`).
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, SceneError> {
+        let file: SceneFile = toml::from_str(text).map_err(|e| SceneError::Parse {
+            path: origin.to_owned(),
+            message: parse_message(text, &e),
+        })?;
+        Scene::try_from(file).map_err(|source| SceneError::Param {
+            path: origin.to_owned(),
+            source,
+        })
+    }
+
+    /// Reads, parses and validates a scene file.
+    pub fn from_path(path: &Path) -> Result<Scene, SceneError> {
+        let origin = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            path: origin.clone(),
+            source,
+        })?;
+        Scene::from_toml_str(&text, &origin)
+    }
+
+    /// The scene as TOML, every field written out (`kappa`, not
+    /// `sqrt_kappa`). [`Scene::from_toml_str`] reads it back to an equal
+    /// scene.
+    pub fn to_toml(&self) -> String {
+        toml::to_string(&SceneFile::from(self))
+            .expect("a SceneFile has only tables, numbers, strings, booleans and arrays")
+    }
+
+    /// Checks every rule a scene file is checked against; errors name the
+    /// scene field.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        Motor::new(self.motor)?;
+        self.signal.validate()?;
+        if let Some(actuator) = &self.actuator {
+            actuator.validate()?;
+        }
+        if self.run.steps_per_harmonic == 0 {
+            return Err(ParamError::out_of_range(
+                "run.steps_per_harmonic",
+                0.0,
+                "must be at least 1",
+            ));
+        }
+        if self.run.max_periods == 0 {
+            return Err(ParamError::out_of_range(
+                "run.max_periods",
+                0.0,
+                "must be at least 1",
+            ));
+        }
+        for (i, indicator) in self.outputs.indicators.iter().enumerate() {
+            if self.outputs.indicators[..i].contains(indicator) {
+                return Err(ParamError::Inconsistent {
+                    field: "outputs.indicators".to_owned(),
+                    reason: format!("lists \"{indicator}\" more than once"),
+                });
+            }
+            if let Some(reason) =
+                indicator.unavailable_because(&self.signal, self.actuator.as_ref())
+            {
+                return Err(ParamError::Inconsistent {
+                    field: "outputs.indicators".to_owned(),
+                    reason: reason.to_owned(),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+impl TryFrom<SceneFile> for Scene {
+    type Error = ParamError;
+
+    fn try_from(file: SceneFile) -> Result<Self, Self::Error> {
+        let motor = file
+            .motor
+            .map_or_else(MotorParams::default, |m| MotorParams {
+                slider_mass: m.slider_mass,
+                contact_force: m.contact_force,
+                mu_static: m.mu_static,
+                mu_dynamic: m.mu_dynamic,
+                extra_acceleration: m.extra_acceleration,
+            });
+        let signal = match file.signal {
+            Some(table) => signal_spec(table)?,
+            None => SignalSpec::paper_default(),
+        };
+        let run = run_settings(file.run)?;
+        let outputs = outputs(file.outputs, &signal, file.actuator.as_ref())?;
+        let scene = Scene {
+            motor,
+            signal,
+            actuator: file.actuator,
+            run,
+            outputs,
+        };
+        scene.validate()?;
+        Ok(scene)
+    }
+}
+
+impl From<&Scene> for SceneFile {
+    fn from(scene: &Scene) -> Self {
+        let m = &scene.motor;
+        let signal = match &scene.signal {
+            SignalSpec::Ideal(shape) => SignalTable {
+                duty: Some(shape.duty),
+                ..shape_table(SignalKind::Ideal, shape)
+            },
+            SignalSpec::Fourier {
+                shape,
+                harmonics,
+                sigma,
+            } => SignalTable {
+                harmonics: Some(i64::try_from(*harmonics).unwrap_or(i64::MAX)),
+                sigma: Some(*sigma),
+                duty: Some(shape.duty),
+                ..shape_table(SignalKind::Fourier, shape)
+            },
+            SignalSpec::Harmonics {
+                frequency,
+                amplitudes,
+                phases,
+                scale_to_stroke,
+                shift_to_minimum,
+            } => SignalTable {
+                frequency: Some(*frequency),
+                amplitudes: Some(amplitudes.clone()),
+                phases: Some(phases.clone()),
+                scale_to_stroke: Some(scale_to_stroke.is_some()),
+                stroke: *scale_to_stroke,
+                shift_to_minimum: Some(*shift_to_minimum),
+                ..empty_signal_table(SignalKind::Harmonics)
+            },
+        };
+        SceneFile {
+            motor: Some(MotorTable {
+                slider_mass: m.slider_mass,
+                contact_force: m.contact_force,
+                mu_static: m.mu_static,
+                mu_dynamic: m.mu_dynamic,
+                extra_acceleration: m.extra_acceleration,
+            }),
+            signal: Some(signal),
+            actuator: scene.actuator,
+            run: Some(RunTable {
+                engine: Some(scene.run.engine),
+                steps_per_harmonic: Some(i64::from(scene.run.steps_per_harmonic)),
+                max_periods: Some(i64::try_from(scene.run.max_periods).unwrap_or(i64::MAX)),
+            }),
+            outputs: Some(OutputsTable {
+                indicators: Some(
+                    scene
+                        .outputs
+                        .indicators
+                        .iter()
+                        .map(|i| i.name().to_owned())
+                        .collect(),
+                ),
+                trajectory: Some(scene.outputs.trajectory),
+                events: Some(scene.outputs.events),
+            }),
+        }
+    }
+}
+
+fn empty_signal_table(kind: SignalKind) -> SignalTable {
+    SignalTable {
+        kind,
+        stroke: None,
+        sqrt_kappa: None,
+        kappa: None,
+        harmonics: None,
+        sigma: None,
+        duty: None,
+        frequency: None,
+        amplitudes: None,
+        phases: None,
+        scale_to_stroke: None,
+        shift_to_minimum: None,
+    }
+}
+
+fn shape_table(kind: SignalKind, shape: &IdealShape) -> SignalTable {
+    SignalTable {
+        stroke: Some(shape.stroke),
+        kappa: Some(shape.kappa),
+        ..empty_signal_table(kind)
+    }
+}
+
+/// An error for a field given with a `kind` that does not use it.
+fn refuse_fields(kind: SignalKind, fields: &[(&str, bool)]) -> Result<(), ParamError> {
+    match fields.iter().find(|(_, given)| *given) {
+        Some((name, _)) => Err(ParamError::Inconsistent {
+            field: format!("signal.{name}"),
+            reason: format!("not used with kind = \"{}\"", kind.name()),
+        }),
+        None => Ok(()),
+    }
+}
+
+fn required<T>(value: Option<T>, name: &str, kind: SignalKind) -> Result<T, ParamError> {
+    value.ok_or_else(|| ParamError::Inconsistent {
+        field: format!("signal.{name}"),
+        reason: format!("missing: required with kind = \"{}\"", kind.name()),
+    })
+}
+
+/// `kappa` from exactly one of `kappa` and `sqrt_kappa`.
+fn kappa(kappa: Option<f64>, sqrt_kappa: Option<f64>) -> Result<f64, ParamError> {
+    match (kappa, sqrt_kappa) {
+        (Some(k), None) => Ok(k),
+        (None, Some(s)) => {
+            ParamError::positive("signal.sqrt_kappa", s)?;
+            let k = s * s;
+            if k.is_finite() && k > 0.0 {
+                Ok(k)
+            } else {
+                Err(ParamError::out_of_range(
+                    "signal.sqrt_kappa",
+                    s,
+                    format!("its square kappa = {k} must be positive and finite"),
+                ))
+            }
+        }
+        (Some(_), Some(_)) => Err(ParamError::Inconsistent {
+            field: "signal.kappa".to_owned(),
+            reason: "give exactly one of signal.kappa and signal.sqrt_kappa, not both".to_owned(),
+        }),
+        (None, None) => Err(ParamError::Inconsistent {
+            field: "signal.kappa".to_owned(),
+            reason: "missing: give exactly one of signal.kappa and signal.sqrt_kappa".to_owned(),
+        }),
+    }
+}
+
+fn signal_spec(t: SignalTable) -> Result<SignalSpec, ParamError> {
+    let kind = t.kind;
+    match kind {
+        SignalKind::Fourier | SignalKind::Ideal => {
+            refuse_fields(
+                kind,
+                &[
+                    ("frequency", t.frequency.is_some()),
+                    ("amplitudes", t.amplitudes.is_some()),
+                    ("phases", t.phases.is_some()),
+                    ("scale_to_stroke", t.scale_to_stroke.is_some()),
+                    ("shift_to_minimum", t.shift_to_minimum.is_some()),
+                ],
+            )?;
+            let shape = IdealShape {
+                stroke: required(t.stroke, "stroke", kind)?,
+                kappa: kappa(t.kappa, t.sqrt_kappa)?,
+                duty: t.duty.unwrap_or(1.0),
+            };
+            if kind == SignalKind::Ideal {
+                refuse_fields(
+                    kind,
+                    &[
+                        ("harmonics", t.harmonics.is_some()),
+                        ("sigma", t.sigma.is_some()),
+                    ],
+                )?;
+                return Ok(SignalSpec::Ideal(shape));
+            }
+            let n = required(t.harmonics, "harmonics", kind)?;
+            let harmonics = usize::try_from(n)
+                .ok()
+                .filter(|n| (1..=MAX_HARMONICS).contains(n))
+                .ok_or_else(|| {
+                    ParamError::out_of_range(
+                        "signal.harmonics",
+                        n as f64,
+                        format!("must be an integer from 1 to {MAX_HARMONICS}"),
+                    )
+                })?;
+            Ok(SignalSpec::Fourier {
+                shape,
+                harmonics,
+                sigma: t.sigma.unwrap_or(false),
+            })
+        }
+        SignalKind::Harmonics => {
+            refuse_fields(
+                kind,
+                &[
+                    ("kappa", t.kappa.is_some()),
+                    ("sqrt_kappa", t.sqrt_kappa.is_some()),
+                    ("harmonics", t.harmonics.is_some()),
+                    ("sigma", t.sigma.is_some()),
+                    ("duty", t.duty.is_some()),
+                ],
+            )?;
+            let scale_to_stroke = if t.scale_to_stroke.unwrap_or(false) {
+                Some(t.stroke.ok_or_else(|| ParamError::Inconsistent {
+                    field: "signal.stroke".to_owned(),
+                    reason: "missing: required with scale_to_stroke = true".to_owned(),
+                })?)
+            } else if t.stroke.is_some() {
+                return Err(ParamError::Inconsistent {
+                    field: "signal.stroke".to_owned(),
+                    reason: "only used with scale_to_stroke = true for kind = \"harmonics\""
+                        .to_owned(),
+                });
+            } else {
+                None
+            };
+            Ok(SignalSpec::Harmonics {
+                frequency: required(t.frequency, "frequency", kind)?,
+                amplitudes: required(t.amplitudes, "amplitudes", kind)?,
+                phases: required(t.phases, "phases", kind)?,
+                scale_to_stroke,
+                shift_to_minimum: t.shift_to_minimum.unwrap_or(true),
+            })
+        }
+    }
+}
+
+fn run_settings(table: Option<RunTable>) -> Result<RunSettings, ParamError> {
+    let defaults = RunSettings::default();
+    let Some(t) = table else {
+        return Ok(defaults);
+    };
+    let steps_per_harmonic = match t.steps_per_harmonic {
+        None => defaults.steps_per_harmonic,
+        Some(s) => u32::try_from(s).ok().filter(|s| *s >= 1).ok_or_else(|| {
+            ParamError::out_of_range(
+                "run.steps_per_harmonic",
+                s as f64,
+                format!("must be an integer from 1 to {}", u32::MAX),
+            )
+        })?,
+    };
+    let max_periods = match t.max_periods {
+        None => defaults.max_periods,
+        Some(p) => u64::try_from(p).ok().filter(|p| *p >= 1).ok_or_else(|| {
+            ParamError::out_of_range("run.max_periods", p as f64, "must be at least 1")
+        })?,
+    };
+    Ok(RunSettings {
+        engine: t.engine.unwrap_or(defaults.engine),
+        steps_per_harmonic,
+        max_periods,
+    })
+}
+
+fn outputs(
+    table: Option<OutputsTable>,
+    signal: &SignalSpec,
+    actuator: Option<&ActuatorParams>,
+) -> Result<Outputs, ParamError> {
+    let t = table.unwrap_or(OutputsTable {
+        indicators: None,
+        trajectory: None,
+        events: None,
+    });
+    let indicators = match t.indicators {
+        None => Indicator::available(signal, actuator),
+        Some(names) => names
+            .iter()
+            .map(|name| {
+                name.parse::<Indicator>()
+                    .map_err(|e| ParamError::Inconsistent {
+                        field: "outputs.indicators".to_owned(),
+                        reason: e.to_string(),
+                    })
+            })
+            .collect::<Result<Vec<_>, _>>()?,
+    };
+    Ok(Outputs {
+        indicators,
+        trajectory: t.trajectory.unwrap_or(false),
+        events: t.events.unwrap_or(false),
+    })
+}
+
+/// One line from a TOML error: the field path (found from the error's span
+/// in the parsed document), the parser's message, and line and column.
+fn parse_message(text: &str, error: &toml::de::Error) -> String {
+    let message = error
+        .message()
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ");
+    let Some(span) = error.span() else {
+        return message;
+    };
+    let start = span.start.min(text.len());
+    let before = text.get(..start).unwrap_or("");
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    match field_path(text, &span) {
+        Some(path) => format!("{path}: {message} (line {line}, column {column})"),
+        None => format!("{message} (line {line}, column {column})"),
+    }
+}
+
+/// The dotted path (`motor.slider_mass`, `signal.amplitudes[1]`) of the key
+/// or value at `span`, if the text parses as TOML and one contains it.
+fn field_path(text: &str, span: &Range<usize>) -> Option<String> {
+    let root = DeTable::parse(text).ok()?;
+    let mut path = Vec::new();
+    path_in_table(root.get_ref(), span, &mut path);
+    (!path.is_empty()).then(|| path.join("."))
+}
+
+fn contains(outer: &Range<usize>, inner: &Range<usize>) -> bool {
+    outer.start <= inner.start && inner.end <= outer.end
+}
+
+fn path_in_table(table: &DeTable<'_>, span: &Range<usize>, path: &mut Vec<String>) {
+    for (key, value) in table.iter() {
+        if contains(&key.span(), span) {
+            path.push(key.get_ref().to_string());
+            return;
+        }
+        if contains(&value.span(), span) {
+            path.push(key.get_ref().to_string());
+            path_in_value(value.get_ref(), span, path);
+            return;
+        }
+    }
+    // A `[table]`'s span is its header; its keys lie elsewhere in the text.
+    for (key, value) in table.iter() {
+        if let DeValue::Table(inner) = value.get_ref() {
+            let mut sub = vec![key.get_ref().to_string()];
+            path_in_table(inner, span, &mut sub);
+            if sub.len() > 1 {
+                path.extend(sub);
+                return;
+            }
+        }
+    }
+}
+
+fn path_in_value(value: &DeValue<'_>, span: &Range<usize>, path: &mut Vec<String>) {
+    match value {
+        DeValue::Table(table) => path_in_table(table, span, path),
+        DeValue::Array(items) => {
+            for (i, item) in items.iter().enumerate() {
+                if contains(&item.span(), span) {
+                    if let Some(last) = path.last_mut() {
+                        last.push_str(&format!("[{i}]"));
+                    }
+                    path_in_value(item.get_ref(), span, path);
+                    return;
+                }
+            }
+        }
+        _ => {}
+    }
+}

@@ -1,0 +1,382 @@
+//! Frequency-limited signals: finite harmonic series (8)-(10),
+//!
+//! ```text
+//! x_R(t) = c_0 + sum_{k=1}^{n} ( A_k cos(k w_0 t) + B_k sin(k w_0 t) ),
+//! ```
+//!
+//! which is the paper's harmonic form (5) with `d_k = sqrt(A_k^2 + B_k^2)`
+//! and `phi_k = atan2(A_k, B_k)` (7). Velocity, acceleration and jerk are the
+//! term-wise derivatives, all evaluated with one `sin_cos` call and the
+//! angle-addition recurrence.
+//!
+//! [`FourierSignal::approximate_ideal`] builds the paper's signals: the
+//! coefficients (12)-(14) of the ideal signal (11), optionally multiplied by
+//! the modified Lanczos sigma factors (15), `sigma_k(n) = sinc(k pi/(n+1))`,
+//! then scaled so that `max x_R - min x_R` equals the stroke and shifted so
+//! that the minimum lies at `t = 0` with value 0 (section 4). Extrema come
+//! from the roots of `v_R` (a trigonometric polynomial), never from sampling.
+
+use super::IdealShape;
+use super::RodState;
+use crate::engine::trig_roots::TrigPoly;
+use crate::error::ParamError;
+use crate::motor::Motor;
+use std::f64::consts::PI;
+
+/// A finite harmonic series with period `T`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FourierSignal {
+    period: f64,
+    omega: f64,
+    c0: f64,
+    /// Cosine coefficients `A_k`, k = 1..=n (m).
+    cos: Vec<f64>,
+    /// Sine coefficients `B_k`, k = 1..=n (m).
+    sin: Vec<f64>,
+    /// Precomputed `k w A_k`, `k w B_k` (velocity) and `k^2 w^2 A_k`,
+    /// `k^2 w^2 B_k` (acceleration) for the hot path.
+    vel: Vec<(f64, f64)>,
+    acc: Vec<(f64, f64)>,
+}
+
+/// Extrema of `x_R` over a period.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extrema {
+    /// Phase of the minimum (s).
+    pub tau_min: f64,
+    /// Minimum value (m).
+    pub min: f64,
+    /// Phase of the maximum (s).
+    pub tau_max: f64,
+    /// Maximum value (m).
+    pub max: f64,
+}
+
+/// The modified Lanczos sigma factor (15): `sigma_k(n) = sinc(k pi / (n+1))`.
+pub fn sigma_factor(k: usize, n: usize) -> f64 {
+    let x = k as f64 * PI / (n as f64 + 1.0);
+    x.sin() / x
+}
+
+/// Fourier coefficients (12)-(14) of the ideal signal (11) with
+/// acceleration `a_r`, acceleration time `t1` and period `period`:
+/// returns `(a_0 / 2, [a_k], [b_k])` for `k = 1..=n`, where `a_k` multiplies
+/// `cos(k w_0 t)` and `b_k` multiplies `sin(k w_0 t)`.
+pub fn ideal_coefficients(a_r: f64, t1: f64, period: f64, n: usize) -> (f64, Vec<f64>, Vec<f64>) {
+    let offset = a_r * t1.powi(3) / (3.0 * period) / 2.0;
+    let mut a = Vec::with_capacity(n);
+    let mut b = Vec::with_capacity(n);
+    for k in 1..=n {
+        let kf = k as f64;
+        let (s, c) = (2.0 * PI * kf * t1 / period).sin_cos();
+        let p = period * t1 / (PI * kf * kf);
+        let q = t1 * t1 / kf - period * period / (2.0 * PI * PI * kf.powi(3));
+        let r = period * period / (2.0 * PI * PI * kf.powi(3));
+        a.push(a_r / (2.0 * PI) * (p * c + q * s));
+        b.push(a_r / (2.0 * PI) * (p * s - q * c - r));
+    }
+    (offset, a, b)
+}
+
+impl FourierSignal {
+    /// A series from its coefficients: `x_R = c0 + sum A_k cos + B_k sin`.
+    /// Trailing zero harmonics are dropped. The caller guarantees a positive
+    /// finite period and finite coefficients.
+    pub fn from_coefficients(period: f64, c0: f64, mut cos: Vec<f64>, mut sin: Vec<f64>) -> Self {
+        assert_eq!(cos.len(), sin.len(), "one sine per cosine coefficient");
+        while cos.len() > 1 && cos.last() == Some(&0.0) && sin.last() == Some(&0.0) {
+            cos.pop();
+            sin.pop();
+        }
+        let omega = 2.0 * PI / period;
+        let vel = (1..=cos.len())
+            .map(|k| {
+                let w = k as f64 * omega;
+                (w * cos[k - 1], w * sin[k - 1])
+            })
+            .collect();
+        let acc = (1..=cos.len())
+            .map(|k| {
+                let w2 = (k as f64 * omega).powi(2);
+                (w2 * cos[k - 1], w2 * sin[k - 1])
+            })
+            .collect();
+        Self {
+            period,
+            omega,
+            c0,
+            cos,
+            sin,
+            vel,
+            acc,
+        }
+    }
+
+    /// The first `n` harmonics of the ideal signal of `shape`, with sigma
+    /// factors if asked, scaled to the stroke and shifted to the minimum.
+    pub fn approximate_ideal(
+        shape: IdealShape,
+        n: usize,
+        sigma: bool,
+        motor: &Motor,
+    ) -> Result<Self, ParamError> {
+        let raw = Self::partial_sum(shape, n, sigma, motor);
+        raw.scaled_to_stroke(shape.stroke)?.shifted_to_minimum()
+    }
+
+    /// The unscaled, unshifted partial sum (8) of the ideal signal with the
+    /// coefficients (12)-(14), times sigma factors (15) if asked. This is
+    /// the signal whose Gibbs overshoot section 4 discusses.
+    pub fn partial_sum(shape: IdealShape, n: usize, sigma: bool, motor: &Motor) -> Self {
+        let (t1, period) = shape.times(motor);
+        let t1 = if shape.duty == 1.0 { period } else { t1 };
+        let (offset, mut a, mut b) = ideal_coefficients(shape.a_r(motor), t1, period, n);
+        if sigma {
+            for k in 1..=n {
+                let s = sigma_factor(k, n);
+                a[k - 1] *= s;
+                b[k - 1] *= s;
+            }
+        }
+        Self::from_coefficients(period, offset, a, b)
+    }
+
+    /// Period `T` (s).
+    pub fn period(&self) -> f64 {
+        self.period
+    }
+
+    /// Fundamental frequency (Hz).
+    pub fn f0(&self) -> f64 {
+        1.0 / self.period
+    }
+
+    /// Angular fundamental frequency `w_0 = 2 pi / T` (rad/s).
+    pub fn omega(&self) -> f64 {
+        self.omega
+    }
+
+    /// Number of harmonics `n` (highest `k` present).
+    pub fn degree(&self) -> usize {
+        self.cos.len()
+    }
+
+    /// Constant term `c_0` (m).
+    pub fn offset(&self) -> f64 {
+        self.c0
+    }
+
+    /// Amplitudes `d_k = sqrt(A_k^2 + B_k^2)` (6), k = 1..=n (m).
+    pub fn amplitudes(&self) -> Vec<f64> {
+        self.cos
+            .iter()
+            .zip(&self.sin)
+            .map(|(a, b)| a.hypot(*b))
+            .collect()
+    }
+
+    /// Phases `phi_k = atan2(A_k, B_k)` (7), k = 1..=n (rad).
+    pub fn phases(&self) -> Vec<f64> {
+        self.cos
+            .iter()
+            .zip(&self.sin)
+            .map(|(a, b)| a.atan2(*b))
+            .collect()
+    }
+
+    /// Cosine and sine coefficients `(A_k, B_k)`.
+    pub fn coefficients(&self) -> (&[f64], &[f64]) {
+        (&self.cos, &self.sin)
+    }
+
+    /// Position at phase `tau` (m).
+    pub fn position(&self, tau: f64) -> f64 {
+        let mut x = self.c0;
+        for_each_harmonic(self.omega * tau, self.cos.len(), |k, c, s| {
+            x += self.cos[k] * c + self.sin[k] * s;
+        });
+        x
+    }
+
+    /// Velocity at phase `tau` (m/s).
+    #[inline]
+    pub fn velocity(&self, tau: f64) -> f64 {
+        let mut v = 0.0;
+        for_each_harmonic(self.omega * tau, self.vel.len(), |k, c, s| {
+            let (wa, wb) = self.vel[k];
+            v += wb * c - wa * s;
+        });
+        v
+    }
+
+    /// Acceleration at phase `tau` (m/s^2).
+    #[inline]
+    pub fn acceleration(&self, tau: f64) -> f64 {
+        let mut a = 0.0;
+        for_each_harmonic(self.omega * tau, self.acc.len(), |k, c, s| {
+            let (wa, wb) = self.acc[k];
+            a -= wa * c + wb * s;
+        });
+        a
+    }
+
+    /// Velocity and acceleration at phase `tau` in one pass.
+    #[inline]
+    pub fn velocity_acceleration(&self, tau: f64) -> (f64, f64) {
+        let mut v = 0.0;
+        let mut a = 0.0;
+        for_each_harmonic(self.omega * tau, self.vel.len(), |k, c, s| {
+            let (va, vb) = self.vel[k];
+            let (aa, ab) = self.acc[k];
+            v += vb * c - va * s;
+            a -= aa * c + ab * s;
+        });
+        (v, a)
+    }
+
+    /// Jerk at phase `tau` (m/s^3).
+    pub fn jerk(&self, tau: f64) -> f64 {
+        let mut j = 0.0;
+        for_each_harmonic(self.omega * tau, self.acc.len(), |k, c, s| {
+            let (aa, ab) = self.acc[k];
+            let w = (k + 1) as f64 * self.omega;
+            j += w * (aa * s - ab * c);
+        });
+        j
+    }
+
+    /// Position, velocity and acceleration at phase `tau`, in one pass.
+    #[inline]
+    pub fn state(&self, tau: f64) -> RodState {
+        let mut st = RodState {
+            x: self.c0,
+            v: 0.0,
+            a: 0.0,
+        };
+        for_each_harmonic(self.omega * tau, self.cos.len(), |k, c, s| {
+            let (va, vb) = self.vel[k];
+            let (aa, ab) = self.acc[k];
+            st.x += self.cos[k] * c + self.sin[k] * s;
+            st.v += vb * c - va * s;
+            st.a -= aa * c + ab * s;
+        });
+        st
+    }
+
+    /// `a_R(theta)` as a trigonometric polynomial in `theta = w_0 tau`.
+    pub fn acceleration_poly(&self) -> TrigPoly {
+        TrigPoly::new(
+            0.0,
+            self.acc.iter().map(|(a, _)| -a).collect(),
+            self.acc.iter().map(|(_, b)| -b).collect(),
+        )
+    }
+
+    /// `v_R(theta) / w_0` as a trigonometric polynomial in `theta`.
+    fn velocity_poly(&self) -> TrigPoly {
+        let n = self.cos.len();
+        TrigPoly::new(
+            0.0,
+            (1..=n).map(|k| k as f64 * self.sin[k - 1]).collect(),
+            (1..=n).map(|k| -(k as f64) * self.cos[k - 1]).collect(),
+        )
+    }
+
+    /// Exact extrema of `x_R` over a period, at the roots of `v_R`.
+    pub fn extrema(&self) -> Extrema {
+        let mut ext = Extrema {
+            tau_min: 0.0,
+            min: self.position(0.0),
+            tau_max: 0.0,
+            max: self.position(0.0),
+        };
+        for theta in self.velocity_poly().roots() {
+            let tau = theta / self.omega;
+            let x = self.position(tau);
+            if x < ext.min {
+                ext.min = x;
+                ext.tau_min = tau;
+            }
+            if x > ext.max {
+                ext.max = x;
+                ext.tau_max = tau;
+            }
+        }
+        ext
+    }
+
+    /// Peak-to-peak stroke `max x_R - min x_R` (m).
+    pub fn stroke(&self) -> f64 {
+        let e = self.extrema();
+        e.max - e.min
+    }
+
+    /// All amplitudes scaled so that the stroke equals `stroke` (m).
+    pub fn scaled_to_stroke(&self, stroke: f64) -> Result<Self, ParamError> {
+        let actual = self.stroke();
+        if actual.is_nan() || actual <= 0.0 {
+            return Err(ParamError::Inconsistent {
+                field: "signal".to_owned(),
+                reason: format!("the signal has no stroke to scale (max - min = {actual} m)"),
+            });
+        }
+        let f = stroke / actual;
+        Ok(Self::from_coefficients(
+            self.period,
+            self.c0 * f,
+            self.cos.iter().map(|a| a * f).collect(),
+            self.sin.iter().map(|b| b * f).collect(),
+        ))
+    }
+
+    /// The signal shifted in time and offset so that its minimum lies at
+    /// `t = 0` with value 0.
+    pub fn shifted_to_minimum(&self) -> Result<Self, ParamError> {
+        let shifted = self.delayed(-self.extrema().tau_min);
+        // c0 from the shifted series itself, so that x_R(0) = 0 to rounding.
+        let c0 = shifted.c0 - shifted.position(0.0);
+        Ok(Self::from_coefficients(
+            self.period,
+            c0,
+            shifted.cos,
+            shifted.sin,
+        ))
+    }
+
+    /// The mirrored signal `x_R -> -x_R`.
+    pub fn mirrored(&self) -> Self {
+        Self::from_coefficients(
+            self.period,
+            -self.c0,
+            self.cos.iter().map(|a| -a).collect(),
+            self.sin.iter().map(|b| -b).collect(),
+        )
+    }
+
+    /// The same signal delayed by `delay` seconds: `x_R(t - delay)`.
+    pub fn delayed(&self, delay: f64) -> Self {
+        let theta = -self.omega * delay;
+        let mut cos = Vec::with_capacity(self.cos.len());
+        let mut sin = Vec::with_capacity(self.sin.len());
+        for (k, (a, b)) in self.cos.iter().zip(&self.sin).enumerate() {
+            let (s, c) = ((k + 1) as f64 * theta).sin_cos();
+            cos.push(a * c + b * s);
+            sin.push(b * c - a * s);
+        }
+        Self::from_coefficients(self.period, self.c0, cos, sin)
+    }
+}
+
+/// Calls `f(k - 1, cos k theta, sin k theta)` for `k = 1..=n`, with one
+/// `sin_cos` call and the angle-addition recurrence.
+#[inline(always)]
+fn for_each_harmonic(theta: f64, n: usize, mut f: impl FnMut(usize, f64, f64)) {
+    let (s1, c1) = theta.sin_cos();
+    let (mut c, mut s) = (c1, s1);
+    for k in 0..n {
+        f(k, c, s);
+        let cn = c * c1 - s * s1;
+        s = s * c1 + c * s1;
+        c = cn;
+    }
+}

@@ -1,0 +1,479 @@
+//! Rod excitation signals `x_R(t)` (MODEL.md section 2, the paper's
+//! section 4).
+//!
+//! * [`ideal`]: the ideal signal (11), constant acceleration `a_R = kappa a_0`
+//!   on `[0, t_1]`, rest on `(t_1, T)`; position and velocity jump back to 0
+//!   at the end of the acceleration phase.
+//! * [`fourier`]: the first `n` harmonics of the ideal signal, coefficients
+//!   (12)-(14), optionally with Lanczos sigma factors (15), scaled to the
+//!   stroke and shifted so that the minimum lies at `t = 0` with value 0.
+//! * [`harmonics`]: an explicit list of harmonics `(k, d_k, phi_k)` at a given
+//!   fundamental frequency, with the same optional scaling and shift.
+//!
+//! A [`Signal`] is periodic with period `T`. It is evaluated at a *phase*
+//! `tau` in `[0, T)`; time itself is kept by the engines as
+//! `(period index, phase)`. Before `t = 0` the rod rests at `x_R = 0`.
+//!
+//! Besides evaluation, a signal answers the questions the event engine asks:
+//! where in a period `a_R(tau) - c` changes sign ([`Signal::partition`]), and
+//! where the rod jumps ([`Signal::jump_phase`]).
+
+pub mod fourier;
+pub mod harmonics;
+pub mod ideal;
+
+use crate::engine::trig_roots::TrigPoly;
+use crate::error::ParamError;
+use crate::motor::Motor;
+use std::cmp::Ordering;
+use std::f64::consts::PI;
+
+pub use fourier::FourierSignal;
+pub use ideal::IdealSignal;
+
+/// How the rod amplitude is chosen. Given either as `kappa` (`a_R / a_0`) or
+/// as its square root, as in the paper's figures.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IdealShape {
+    /// Stroke `x_Rmax` in m (> 0).
+    pub stroke: f64,
+    /// `kappa = a_R / a_0` (> 0).
+    pub kappa: f64,
+    /// `t_1 / T` in (0, 1]; 1 is the continuous signal.
+    pub duty: f64,
+}
+
+/// What a scene asks for as the rod signal (validated by [`SignalSpec::validate`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum SignalSpec {
+    /// The ideal signal (11).
+    Ideal(IdealShape),
+    /// The Fourier approximation of the ideal signal with `harmonics` terms.
+    Fourier {
+        /// The ideal signal being approximated.
+        shape: IdealShape,
+        /// Number of harmonics `n` (>= 1).
+        harmonics: usize,
+        /// Apply Lanczos sigma factors (15).
+        sigma: bool,
+    },
+    /// An explicit harmonic series (8): `x_R = sum d_k sin(k w_0 t + phi_k)`.
+    Harmonics {
+        /// Fundamental frequency `f_0` in Hz.
+        frequency: f64,
+        /// `d_k` for `k = 1..`, in m.
+        amplitudes: Vec<f64>,
+        /// `phi_k` for `k = 1..`, in rad.
+        phases: Vec<f64>,
+        /// Scale all amplitudes so that max - min equals this stroke (m).
+        scale_to_stroke: Option<f64>,
+        /// Shift so that the minimum lies at `t = 0` with value 0.
+        shift_to_minimum: bool,
+    },
+}
+
+/// Largest number of harmonics accepted: the root finder works on a
+/// `2n x 2n` eigenproblem, which stays fast and accurate up to here.
+pub const MAX_HARMONICS: usize = 256;
+
+impl IdealShape {
+    fn validate(&self) -> Result<(), ParamError> {
+        ParamError::positive("signal.stroke", self.stroke)?;
+        ParamError::positive("signal.kappa", self.kappa)?;
+        ParamError::positive("signal.duty", self.duty)?;
+        if self.duty > 1.0 {
+            return Err(ParamError::out_of_range(
+                "signal.duty",
+                self.duty,
+                "must lie in (0, 1] (t_1 / T)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Rod acceleration `a_R = kappa a_0` in the acceleration phase.
+    pub fn a_r(&self, motor: &Motor) -> f64 {
+        self.kappa * motor.a_0()
+    }
+
+    /// Acceleration time `t_1 = sqrt(2 x_Rmax / a_R)` and period `T = t_1 / duty`.
+    pub fn times(&self, motor: &Motor) -> (f64, f64) {
+        let t1 = (2.0 * self.stroke / self.a_r(motor)).sqrt();
+        (t1, t1 / self.duty)
+    }
+}
+
+impl SignalSpec {
+    /// The paper's default signal: `n = 2`, `sqrt(kappa) = 6`, sigma factors,
+    /// continuous, stroke 25 um.
+    pub fn paper_default() -> Self {
+        SignalSpec::Fourier {
+            shape: IdealShape {
+                stroke: 25e-6,
+                kappa: 36.0,
+                duty: 1.0,
+            },
+            harmonics: 2,
+            sigma: true,
+        }
+    }
+
+    /// Checks every value; errors name the scene field.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        match self {
+            SignalSpec::Ideal(shape) => shape.validate(),
+            SignalSpec::Fourier {
+                shape, harmonics, ..
+            } => {
+                shape.validate()?;
+                if *harmonics == 0 || *harmonics > MAX_HARMONICS {
+                    return Err(ParamError::out_of_range(
+                        "signal.harmonics",
+                        *harmonics as f64,
+                        format!("must be an integer from 1 to {MAX_HARMONICS}"),
+                    ));
+                }
+                Ok(())
+            }
+            SignalSpec::Harmonics {
+                frequency,
+                amplitudes,
+                phases,
+                scale_to_stroke,
+                ..
+            } => {
+                ParamError::positive("signal.frequency", *frequency)?;
+                if amplitudes.is_empty() || amplitudes.len() > MAX_HARMONICS {
+                    return Err(ParamError::out_of_range(
+                        "signal.amplitudes",
+                        amplitudes.len() as f64,
+                        format!("must list from 1 to {MAX_HARMONICS} amplitudes"),
+                    ));
+                }
+                if phases.len() != amplitudes.len() {
+                    return Err(ParamError::Inconsistent {
+                        field: "signal.phases".to_owned(),
+                        reason: format!(
+                            "has {} entries but signal.amplitudes has {}",
+                            phases.len(),
+                            amplitudes.len()
+                        ),
+                    });
+                }
+                for (k, d) in amplitudes.iter().enumerate() {
+                    ParamError::non_negative(&format!("signal.amplitudes[{k}]"), *d)?;
+                }
+                for (k, phi) in phases.iter().enumerate() {
+                    ParamError::finite(&format!("signal.phases[{k}]"), *phi)?;
+                }
+                if amplitudes.iter().all(|d| *d == 0.0) {
+                    return Err(ParamError::Inconsistent {
+                        field: "signal.amplitudes".to_owned(),
+                        reason: "all amplitudes are zero: the rod does not move".to_owned(),
+                    });
+                }
+                if let Some(stroke) = scale_to_stroke {
+                    ParamError::positive("signal.stroke", *stroke)?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Sign of `a_R(tau) - c` on a piece of the period.
+pub type Sign = Ordering;
+
+/// One piece `[start, end)` of a period on which `a_R - c` has one sign.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Piece {
+    /// Phase where the piece starts (s).
+    pub start: f64,
+    /// Phase where it ends (s); the last piece ends at `T`.
+    pub end: f64,
+    /// Sign of `a_R - c` inside the piece.
+    pub sign: Sign,
+}
+
+/// The period `[0, T)` cut into pieces on which `a_R(tau) - c` keeps its
+/// sign. Piece boundaries are the roots of `a_R = c` where the sign changes,
+/// the phase of a rod jump (if any) and `0`/`T`. Adjacent pieces of equal
+/// sign are merged, so a double root (a tangency) is not a boundary.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Partition {
+    /// The threshold `c` (m/s^2).
+    pub level: f64,
+    /// Pieces in order, covering `[0, T)` without gaps.
+    pub pieces: Vec<Piece>,
+}
+
+impl Partition {
+    /// Index of the piece containing `tau` (pieces are closed on the left).
+    pub fn locate(&self, tau: f64) -> usize {
+        // pieces[i].start <= tau < pieces[i].end
+        let idx = self.pieces.partition_point(|p| p.start <= tau);
+        idx.saturating_sub(1)
+    }
+
+    /// Builds a partition from sorted roots in `[0, T)` and a sign oracle
+    /// evaluated at piece midpoints; `breaks` are extra boundaries (jumps).
+    fn from_roots(
+        level: f64,
+        period: f64,
+        roots: &[f64],
+        breaks: &[f64],
+        mut sign_at: impl FnMut(f64) -> Sign,
+    ) -> Self {
+        let mut knots: Vec<f64> = Vec::with_capacity(roots.len() + breaks.len() + 2);
+        knots.push(0.0);
+        knots.extend(roots.iter().copied().filter(|r| *r > 0.0 && *r < period));
+        knots.extend(breaks.iter().copied().filter(|r| *r > 0.0 && *r < period));
+        knots.sort_by(f64::total_cmp);
+        knots.dedup();
+        knots.push(period);
+        let mut pieces: Vec<Piece> = Vec::with_capacity(knots.len());
+        for w in knots.windows(2) {
+            let (start, end) = (w[0], w[1]);
+            let sign = sign_at(0.5 * (start + end));
+            let is_break = breaks.contains(&start);
+            match pieces.last_mut() {
+                Some(last) if last.sign == sign && !is_break => last.end = end,
+                _ => pieces.push(Piece { start, end, sign }),
+            }
+        }
+        Partition { level, pieces }
+    }
+}
+
+/// Where the rod is at an instant: position, velocity, acceleration.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RodState {
+    /// `x_R` (m).
+    pub x: f64,
+    /// `v_R` (m/s).
+    pub v: f64,
+    /// `a_R` (m/s^2).
+    pub a: f64,
+}
+
+/// A periodic rod signal.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Signal {
+    /// The ideal signal (11).
+    Ideal(IdealSignal),
+    /// A finite harmonic series (8) (Fourier approximation or explicit).
+    Fourier(FourierSignal),
+}
+
+impl Signal {
+    /// Builds the signal a spec describes for this motor (`kappa` refers to
+    /// the motor's `a_0`). Validates the spec first.
+    pub fn build(spec: &SignalSpec, motor: &Motor) -> Result<Self, ParamError> {
+        spec.validate()?;
+        if let SignalSpec::Ideal(shape) | SignalSpec::Fourier { shape, .. } = spec {
+            let a_r = shape.a_r(motor);
+            let (_, period) = shape.times(motor);
+            if !(a_r > 0.0 && period.is_finite() && period > 0.0) {
+                return Err(ParamError::Inconsistent {
+                    field: "signal.kappa".to_owned(),
+                    reason: format!(
+                        "the rod acceleration a_R = kappa a_0 = {a_r} m/s^2 gives the period \
+                         T = {period} s; a kappa-based signal needs a_0 = mu_0 F_c / m_s > 0 \
+                         (for a motor without friction give the signal as kind = \"harmonics\")"
+                    ),
+                });
+            }
+        }
+        match spec {
+            SignalSpec::Ideal(shape) => Ok(Signal::Ideal(IdealSignal::new(*shape, motor))),
+            SignalSpec::Fourier {
+                shape,
+                harmonics,
+                sigma,
+            } => Ok(Signal::Fourier(FourierSignal::approximate_ideal(
+                *shape, *harmonics, *sigma, motor,
+            )?)),
+            SignalSpec::Harmonics {
+                frequency,
+                amplitudes,
+                phases,
+                scale_to_stroke,
+                shift_to_minimum,
+            } => Ok(Signal::Fourier(harmonics::build(
+                *frequency,
+                amplitudes,
+                phases,
+                *scale_to_stroke,
+                *shift_to_minimum,
+            )?)),
+        }
+    }
+
+    /// Period `T` (s).
+    pub fn period(&self) -> f64 {
+        match self {
+            Signal::Ideal(s) => s.period(),
+            Signal::Fourier(s) => s.period(),
+        }
+    }
+
+    /// Fundamental frequency `f_0 = 1/T` (Hz).
+    pub fn f0(&self) -> f64 {
+        1.0 / self.period()
+    }
+
+    /// Highest frequency in the signal, `f_max = n f_0` (37); `None` for the
+    /// ideal signal, whose spectrum is unbounded.
+    pub fn f_max(&self) -> Option<f64> {
+        match self {
+            Signal::Ideal(_) => None,
+            Signal::Fourier(s) => Some(s.degree() as f64 * s.f0()),
+        }
+    }
+
+    /// Position, velocity and acceleration at phase `tau` in `[0, T)`; at a
+    /// jump the value right after it.
+    #[inline]
+    pub fn state(&self, tau: f64) -> RodState {
+        match self {
+            Signal::Ideal(s) => s.state(tau),
+            Signal::Fourier(s) => s.state(tau),
+        }
+    }
+
+    /// Velocity and acceleration at phase `tau` (the engine's hot path).
+    #[inline]
+    pub fn velocity_acceleration(&self, tau: f64) -> (f64, f64) {
+        match self {
+            Signal::Ideal(s) => {
+                let st = s.state(tau);
+                (st.v, st.a)
+            }
+            Signal::Fourier(s) => s.velocity_acceleration(tau),
+        }
+    }
+
+    /// Rod velocity at phase `tau`.
+    #[inline]
+    pub fn velocity(&self, tau: f64) -> f64 {
+        match self {
+            Signal::Ideal(s) => s.state(tau).v,
+            Signal::Fourier(s) => s.velocity(tau),
+        }
+    }
+
+    /// Rod position at phase `tau`.
+    #[inline]
+    pub fn position(&self, tau: f64) -> f64 {
+        match self {
+            Signal::Ideal(s) => s.state(tau).x,
+            Signal::Fourier(s) => s.position(tau),
+        }
+    }
+
+    /// Rod acceleration at phase `tau`.
+    #[inline]
+    pub fn acceleration(&self, tau: f64) -> f64 {
+        match self {
+            Signal::Ideal(s) => s.state(tau).a,
+            Signal::Fourier(s) => s.acceleration(tau),
+        }
+    }
+
+    /// Rod jerk `da_R/dt` at phase `tau` (0 for the piecewise constant
+    /// acceleration of the ideal signal, away from its jumps).
+    pub fn jerk(&self, tau: f64) -> f64 {
+        match self {
+            Signal::Ideal(_) => 0.0,
+            Signal::Fourier(s) => s.jerk(tau),
+        }
+    }
+
+    /// State just before the phase `tau` (the left limit); differs from
+    /// [`Signal::state`] only at a jump. `tau = T` gives the end of a period.
+    pub fn state_before(&self, tau: f64) -> RodState {
+        match self {
+            Signal::Ideal(s) => s.state_before(tau),
+            Signal::Fourier(s) => s.state(if tau >= s.period() { 0.0 } else { tau }),
+        }
+    }
+
+    /// Velocity just before phase `tau` (the left limit; `tau = T` gives the
+    /// end of a period).
+    #[inline]
+    pub fn velocity_before(&self, tau: f64) -> f64 {
+        match self {
+            Signal::Ideal(s) => s.state_before(tau).v,
+            Signal::Fourier(s) => s.velocity(if tau >= s.period() { 0.0 } else { tau }),
+        }
+    }
+
+    /// The phase in `[0, T)` at which position and velocity jump (ideal
+    /// signals only): `t_1` for a discrete signal, `0` for a continuous one.
+    /// The jump at phase 0 does not happen at `t = 0`, where the rod starts
+    /// from rest.
+    pub fn jump_phase(&self) -> Option<f64> {
+        match self {
+            Signal::Ideal(s) => Some(s.jump_phase()),
+            Signal::Fourier(_) => None,
+        }
+    }
+
+    /// Where `a_R(tau) - level` changes sign within a period. Root finding on
+    /// the analytic signal, never sampling; the sign of each piece is taken
+    /// at its midpoint.
+    pub fn partition(&self, level: f64) -> Partition {
+        let period = self.period();
+        match self {
+            Signal::Ideal(s) => {
+                let breaks: Vec<f64> = s.piece_boundaries();
+                Partition::from_roots(level, period, &[], &breaks, |tau| {
+                    s.state(tau).a.total_cmp(&level)
+                })
+            }
+            Signal::Fourier(s) => {
+                let mut poly: TrigPoly = s.acceleration_poly();
+                poly.c0 -= level;
+                let omega = 2.0 * PI / period;
+                let roots: Vec<f64> = poly.roots().into_iter().map(|th| th / omega).collect();
+                Partition::from_roots(level, period, &roots, &[], |tau| {
+                    s.acceleration(tau).total_cmp(&level)
+                })
+            }
+        }
+    }
+
+    /// Smallest and largest rod velocity over a period, exact (from the
+    /// roots of `a_R`).
+    pub fn velocity_range(&self) -> (f64, f64) {
+        let part = self.partition(0.0);
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        for piece in &part.pieces {
+            for v in [
+                self.state(piece.start).v,
+                self.state_before(piece.end).v,
+            ] {
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+        }
+        (lo, hi)
+    }
+
+    /// Largest magnitude of the rod velocity over a period.
+    pub fn velocity_scale(&self) -> f64 {
+        let (lo, hi) = self.velocity_range();
+        lo.abs().max(hi.abs())
+    }
+
+    /// The same signal mirrored: `x_R -> stroke - x_R` is not periodic-start
+    /// preserving in general, so the mirror is taken as `x_R -> -x_R`,
+    /// which reverses the direction of motion (MODEL.md section 7).
+    pub fn mirrored(&self) -> Signal {
+        match self {
+            Signal::Ideal(s) => Signal::Ideal(s.mirrored()),
+            Signal::Fourier(s) => Signal::Fourier(s.mirrored()),
+        }
+    }
+}

@@ -1,0 +1,228 @@
+//! One run of a scene: build the signal and the motor, run the engine the
+//! scene names through the start-up and the steady state with the
+//! observers the scene asks for, and gather every requested indicator with
+//! its error estimate, the work counters and the wall time.
+
+use crate::engine::event::{EventEngine, EventOptions};
+use crate::engine::{Event, EventCounts, PeriodEngine, Segment, WorkCounters};
+use crate::error::Error;
+use crate::indicators::{
+    self, AnalysisOptions, StatsWanted, SteadyIndicators, SteadyState, Transient,
+};
+use crate::motor::Motor;
+use crate::observer::{EventLog, Trajectory};
+use crate::power::{self, PowerReport};
+use crate::scene::{EngineKind, Indicator, Scene};
+use crate::signal::Signal;
+use std::time::{Duration, Instant};
+
+/// Estimated absolute error of each reported indicator (same units).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ErrorEstimate {
+    /// Of `v_inf` (m/s).
+    pub v_inf: Option<f64>,
+    /// Of the start-up time (s).
+    pub startup_time: Option<f64>,
+    /// Of the smoothness.
+    pub smoothness: Option<f64>,
+    /// Of the durability (1/N).
+    pub durability: Option<f64>,
+    /// Of the friction energy (J).
+    pub friction_energy: Option<f64>,
+    /// Of the stiction fraction.
+    pub stiction_fraction: Option<f64>,
+    /// Of the velocity per power (m/(s VA)).
+    pub velocity_per_power: Option<f64>,
+}
+
+/// Everything a run produced.
+#[derive(Debug, Clone)]
+pub struct RunReport {
+    /// Period `T` (s).
+    pub period: f64,
+    /// Highest frequency `f_max = n f_0` (Hz), for harmonic signals.
+    pub f_max: Option<f64>,
+    /// The indicators asked for.
+    pub requested: Vec<Indicator>,
+    /// The steady state.
+    pub steady: SteadyState,
+    /// Indicators of the steady state.
+    pub indicators: SteadyIndicators,
+    /// The start-up from rest, when an indicator needs it.
+    pub transient: Option<Transient>,
+    /// `p_0.99`.
+    pub startup_periods: Option<u64>,
+    /// Time in stick over the simulated transient / its duration.
+    pub stiction_fraction_transient: Option<f64>,
+    /// Electrical input power, when asked for.
+    pub power: Option<PowerReport>,
+    /// Error estimates.
+    pub error: ErrorEstimate,
+    /// Engine work (all periods simulated, period-map evaluations included).
+    pub work: WorkCounters,
+    /// Wall time of the simulation (not of parsing or output).
+    pub wall_time: Duration,
+    /// The event log of the transient, if asked.
+    pub event_log: Option<Vec<Event>>,
+    /// The steady-state period's segments, if asked.
+    pub trajectory: Option<Vec<Segment>>,
+}
+
+impl RunReport {
+    /// `v_inf / S` (35), when power was computed.
+    pub fn velocity_per_power(&self) -> Option<f64> {
+        self.power
+            .as_ref()
+            .map(|p| self.indicators.v_inf / p.apparent_power)
+    }
+
+    /// Start-up time `T p_0.99` (s).
+    pub fn startup_time(&self) -> Option<f64> {
+        self.startup_periods.map(|p| p as f64 * self.period)
+    }
+
+    /// Events of the simulated motion from rest (the transient), or of one
+    /// steady-state period when no transient was simulated.
+    pub fn events(&self) -> EventCounts {
+        self.transient
+            .as_ref()
+            .map_or(self.steady.stats.events, |t| t.events)
+    }
+
+    /// True if this indicator was asked for.
+    pub fn wants(&self, indicator: Indicator) -> bool {
+        self.requested.contains(&indicator)
+    }
+}
+
+/// Builds the signal and motor of a scene.
+pub fn build(scene: &Scene) -> Result<(Signal, Motor), Error> {
+    let motor = Motor::new(scene.motor)?;
+    let signal = Signal::build(&scene.signal, &motor)?;
+    Ok((signal, motor))
+}
+
+/// Runs a scene with the engine it names.
+pub fn run(scene: &Scene) -> Result<RunReport, Error> {
+    let (signal, motor) = build(scene)?;
+    match scene.run.engine {
+        EngineKind::Event => {
+            let engine = EventEngine::new(&signal, &motor, EventOptions::default());
+            run_with(engine, scene, &motor)
+        }
+        EngineKind::Fixed => Err(Error::Param(crate::error::ParamError::Inconsistent {
+            field: "run.engine".to_owned(),
+            reason: "\"fixed\" is not available in this version; use \"event\"".to_owned(),
+        })),
+    }
+}
+
+/// Runs the analysis a scene asks for with a prepared engine.
+pub fn run_with<E: PeriodEngine>(
+    mut engine: E,
+    scene: &Scene,
+    motor: &Motor,
+) -> Result<RunReport, Error> {
+    let clock = Instant::now();
+    let requested = scene.outputs.indicators.clone();
+    let wants = |i: Indicator| requested.contains(&i);
+    let signal = engine.signal().clone();
+    let period = signal.period();
+    let wanted = StatsWanted {
+        smoothness: wants(Indicator::Smoothness),
+        sliding: wants(Indicator::Durability) || wants(Indicator::FrictionEnergy),
+        stiction: wants(Indicator::StictionFraction),
+    };
+    let options = AnalysisOptions {
+        max_periods: scene.run.max_periods,
+        ..Default::default()
+    };
+    let mut event_log = scene.outputs.events.then(EventLog::default);
+    let transient = indicators::transient(&mut engine, &options, wanted, &mut event_log)?;
+    let mut trajectory = scene.outputs.trajectory.then(Trajectory::default);
+    let steady = indicators::steady_state(
+        &mut engine,
+        transient.final_velocity,
+        wanted,
+        &mut trajectory,
+    )?;
+    let indicators = steady.indicators(motor, period);
+    let startup_periods = transient.startup_periods(steady.v_inf);
+    let power = match (&scene.actuator, &signal) {
+        (Some(actuator), Signal::Fourier(s)) if wants(Indicator::VelocityPerPower) => {
+            Some(power::input_power(s, actuator))
+        }
+        _ => None,
+    };
+    let wall_time = clock.elapsed();
+    let stiction_fraction_transient = wanted
+        .stiction
+        .then(|| transient.stick_time / (transient.periods() as f64 * period));
+    let mut error = estimate_errors(&signal, &steady, &transient, &indicators, startup_periods);
+    if let Some(p) = &power {
+        // S (35) is a closed form of the signal: only v_inf carries error.
+        error.velocity_per_power = error.v_inf.map(|dv| dv / p.apparent_power);
+    }
+    Ok(RunReport {
+        period,
+        f_max: signal.f_max(),
+        requested,
+        indicators,
+        startup_periods,
+        stiction_fraction_transient,
+        power,
+        error,
+        work: engine.counters(),
+        wall_time,
+        event_log: event_log.map(|l| l.events),
+        trajectory: trajectory.map(|t| t.segments),
+        transient: Some(transient),
+        steady,
+    })
+}
+
+/// Error estimates from measurable quantities:
+/// * `v_inf`: the disagreement of the two independent steady states (the
+///   transient's last period and the period map's fixed point) plus a
+///   rounding bound of `16 eps` of the rod's position scale per segment;
+/// * ratios (smoothness, durability, friction energy) carry the relative
+///   error of `v_inf` and the same rounding bound on their own inputs;
+/// * `p_0.99` is exact unless a `v_p` lies within the `v_inf` error of the
+///   0.99 threshold, in which case it may be off by one period.
+fn estimate_errors(
+    signal: &Signal,
+    steady: &SteadyState,
+    transient: &Transient,
+    ind: &SteadyIndicators,
+    startup_periods: Option<u64>,
+) -> ErrorEstimate {
+    let period = signal.period();
+    let v_scale = signal.velocity_scale();
+    let segments = steady.stats.events.total() as f64 + 2.0;
+    let rounding = 16.0 * f64::EPSILON * segments * v_scale;
+    let disagreement = if transient.converged {
+        (transient.v_inf() - steady.v_inf).abs()
+    } else {
+        (transient.v_inf() - steady.v_inf).abs().max(steady.last_correction)
+    };
+    let dv = disagreement + rounding;
+    let rel = dv / ind.v_inf.abs() + 16.0 * f64::EPSILON * segments;
+    let startup = startup_periods.map(|p| {
+        let threshold = 0.99 * steady.v_inf;
+        let near = transient
+            .mean_velocities
+            .iter()
+            .take(p as usize)
+            .any(|v| (v - threshold).abs() <= 0.99 * dv);
+        if near { period } else { 0.0 }
+    });
+    ErrorEstimate {
+        v_inf: Some(dv),
+        startup_time: startup,
+        smoothness: ind.smoothness.is_finite().then(|| ind.smoothness * rel),
+        durability: ind.durability.is_finite().then(|| ind.durability.abs() * rel),
+        friction_energy: Some(ind.friction_energy * 16.0 * f64::EPSILON * segments),
+        stiction_fraction: Some(16.0 * f64::EPSILON * segments),
+        velocity_per_power: None,
+    }
+}

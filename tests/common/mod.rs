@@ -1,0 +1,80 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use stickslip::engine::event::{EventEngine, EventOptions};
+use stickslip::scene::Indicator;
+use stickslip::signal::{IdealShape, SignalSpec};
+use stickslip::simulation::{self, RunReport};
+use stickslip::{Motor, MotorParams, Scene, Signal};
+
+/// The paper's motor (MODEL.md section 6).
+pub fn paper_motor() -> Motor {
+    Motor::default()
+}
+
+/// A scene with the paper's motor, the given signal and every indicator
+/// that needs no actuator.
+pub fn scene_with(signal: SignalSpec) -> Scene {
+    let mut scene = Scene {
+        signal,
+        actuator: None,
+        ..Scene::default()
+    };
+    scene
+        .outputs
+        .indicators
+        .retain(|i| *i != Indicator::VelocityPerPower);
+    scene
+}
+
+/// The ideal signal (11).
+pub fn ideal(kappa: f64, duty: f64) -> SignalSpec {
+    SignalSpec::Ideal(IdealShape {
+        stroke: 25e-6,
+        kappa,
+        duty,
+    })
+}
+
+/// A Fourier signal of the paper's kind.
+pub fn fourier(stroke: f64, kappa: f64, n: usize, sigma: bool) -> SignalSpec {
+    SignalSpec::Fourier {
+        shape: IdealShape {
+            stroke,
+            kappa,
+            duty: 1.0,
+        },
+        harmonics: n,
+        sigma,
+    }
+}
+
+/// Runs a scene with the event engine.
+pub fn run(scene: &Scene) -> RunReport {
+    simulation::run(scene).expect("scene runs")
+}
+
+/// Runs a scene's motor and outputs with an arbitrary signal.
+pub fn run_signal(scene: &Scene, signal: &Signal) -> RunReport {
+    let motor = Motor::new(scene.motor).expect("valid motor");
+    let engine = EventEngine::new(signal, &motor, EventOptions::default());
+    simulation::run_with(engine, scene, &motor).expect("signal runs")
+}
+
+/// Motor parameters with other friction coefficients.
+pub fn motor_with(mu_static: f64, mu_dynamic: f64) -> MotorParams {
+    MotorParams {
+        mu_static,
+        mu_dynamic,
+        ..MotorParams::default()
+    }
+}
+
+/// `|a - b| <= rel * |b|`.
+pub fn assert_rel(a: f64, b: f64, rel: f64, what: &str) {
+    assert!(
+        (a - b).abs() <= rel * b.abs(),
+        "{what}: {a:e} vs {b:e} (relative difference {:e} > {rel:e})",
+        ((a - b) / b).abs()
+    );
+}
