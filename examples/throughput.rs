@@ -57,7 +57,12 @@ fn main() {
     );
     let motor = Motor::default();
     println!("event rate over 100000 periods (median of 5 runs):");
-    for (n, kappa, sigma) in [(2, 36.0, true), (2, 1.0, false), (5, 0.36, true), (12, 1.0, true)] {
+    for (n, kappa, sigma) in [
+        (2, 36.0, true),
+        (2, 1.0, false),
+        (5, 0.36, true),
+        (12, 1.0, true),
+    ] {
         let spec = SignalSpec::Fourier {
             shape: IdealShape {
                 stroke: 25e-6,

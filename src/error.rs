@@ -1,5 +1,5 @@
 //! Typed errors. Each subsystem has its own enum with structured fields;
-//! [`Error`] gathers them for callers that do not care which one failed.
+//! [`enum@Error`] gathers them for callers that do not care which one failed.
 //!
 //! Parameter errors always carry the offending field's path as it is
 //! spelled in a scene file (`motor.slider_mass`, `signal.harmonics`) and the

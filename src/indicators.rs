@@ -188,6 +188,37 @@ pub struct Transient {
     pub stick_times: Vec<f64>,
     /// Events over the whole transient.
     pub events: EventCounts,
+    /// Slider position at the end of the transient, `sum x_p`, summed with
+    /// compensation so that it does not drift over long runs (m).
+    pub displacement: f64,
+}
+
+/// Neumaier's compensated sum: the rounding error of every addition is
+/// carried along, so a sum of `N` steps is exact to a few ulps instead of
+/// `N` ulps.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct CompensatedSum {
+    sum: f64,
+    compensation: f64,
+}
+
+impl CompensatedSum {
+    /// Adds `x`.
+    #[inline]
+    pub fn add(&mut self, x: f64) {
+        let t = self.sum + x;
+        if self.sum.abs() >= x.abs() {
+            self.compensation += (self.sum - t) + x;
+        } else {
+            self.compensation += (x - t) + self.sum;
+        }
+        self.sum = t;
+    }
+
+    /// The sum.
+    pub fn value(&self) -> f64 {
+        self.sum + self.compensation
+    }
 }
 
 impl Transient {
@@ -212,7 +243,13 @@ impl Transient {
         let target = 0.99 * v_inf;
         self.mean_velocities
             .iter()
-            .position(|v| if v_inf > 0.0 { *v >= target } else { *v <= target })
+            .position(|v| {
+                if v_inf > 0.0 {
+                    *v >= target
+                } else {
+                    *v <= target
+                }
+            })
             .map(|i| i as u64 + 1)
     }
 }
@@ -263,12 +300,14 @@ pub fn transient<E: PeriodEngine, O: Observer>(
     let mut converged = false;
     let mut stick_time = 0.0;
     let mut stick_times = Vec::new();
+    let mut displacement = CompensatedSum::default();
     let mut events = EventCounts::default();
     let mut p = 0u64;
     while p < options.max_periods {
         p += 1;
         let end = engine.run_period(p, start, &mut (&mut stats, &mut *observer))?;
         mean_velocities.push(end.step / period);
+        displacement.add(end.step);
         stick_time += stats.last.stick_time;
         if wanted.stiction {
             stick_times.push(stats.last.stick_time);
@@ -303,6 +342,7 @@ pub fn transient<E: PeriodEngine, O: Observer>(
         stick_time,
         stick_times,
         events,
+        displacement: displacement.value(),
     })
 }
 

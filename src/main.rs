@@ -42,8 +42,8 @@ fn run(scene: Option<PathBuf>, json: bool) -> Result<(), String> {
     let scene = load(scene.as_ref())?;
     let result = simulation::run(&scene).map_err(|e| e.to_string())?;
     if json {
-        let text = serde_json::to_string_pretty(&report::to_json(&result))
-            .map_err(|e| e.to_string())?;
+        let text =
+            serde_json::to_string_pretty(&report::to_json(&result)).map_err(|e| e.to_string())?;
         println!("{text}");
     } else {
         print!("{}", report::to_text(&result));

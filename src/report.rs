@@ -84,7 +84,10 @@ pub fn to_json(r: &RunReport) -> Value {
                     m.insert("voltage_rms".into(), number(p.u_rms));
                     m.insert("current_rms".into(), number(p.i_rms));
                 }
-                (option_number(r.velocity_per_power()), r.error.velocity_per_power)
+                (
+                    option_number(r.velocity_per_power()),
+                    r.error.velocity_per_power,
+                )
             }
         };
         m.insert(indicator.name().into(), value);
@@ -166,7 +169,12 @@ pub fn to_text(r: &RunReport) -> String {
     let _ = writeln!(out, "indicators (± estimated absolute error):");
     for indicator in &r.requested {
         match indicator {
-            Indicator::VInf => line(&mut out, "v_inf", format_with_error(ind.v_inf, e.v_inf), "m/s"),
+            Indicator::VInf => line(
+                &mut out,
+                "v_inf",
+                format_with_error(ind.v_inf, e.v_inf),
+                "m/s",
+            ),
             Indicator::StartupTime => match (r.startup_time(), r.startup_periods) {
                 (Some(t), Some(p)) => line(
                     &mut out,

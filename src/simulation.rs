@@ -203,7 +203,9 @@ fn estimate_errors(
     let disagreement = if transient.converged {
         (transient.v_inf() - steady.v_inf).abs()
     } else {
-        (transient.v_inf() - steady.v_inf).abs().max(steady.last_correction)
+        (transient.v_inf() - steady.v_inf)
+            .abs()
+            .max(steady.last_correction)
     };
     let dv = disagreement + rounding;
     let rel = dv / ind.v_inf.abs() + 16.0 * f64::EPSILON * segments;
@@ -219,8 +221,11 @@ fn estimate_errors(
     ErrorEstimate {
         v_inf: Some(dv),
         startup_time: startup,
-        smoothness: ind.smoothness.is_finite().then(|| ind.smoothness * rel),
-        durability: ind.durability.is_finite().then(|| ind.durability.abs() * rel),
+        smoothness: ind.smoothness.is_finite().then_some(ind.smoothness * rel),
+        durability: ind
+            .durability
+            .is_finite()
+            .then_some(ind.durability.abs() * rel),
         friction_energy: Some(ind.friction_energy * 16.0 * f64::EPSILON * segments),
         stiction_fraction: Some(16.0 * f64::EPSILON * segments),
         velocity_per_power: None,

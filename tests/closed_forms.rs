@@ -3,9 +3,9 @@
 mod common;
 
 use common::*;
+use stickslip::Signal;
 use stickslip::signal::SignalSpec;
 use stickslip::simulation;
-use stickslip::Signal;
 
 /// Ideal continuous signal, `kappa <= 1` (stick-slip). Closed form (MODEL.md
 /// section 7): `v_1 = x_Rmax / T`, `v_p = (x_Rmax/T)(1 + a_R/(a_R + a_d))`
@@ -42,11 +42,20 @@ fn ideal_slip_slip_velocity_matches_the_closed_form() {
         let a_r = kappa * motor.a_0();
         let t = (2.0 * 25e-6 / a_r).sqrt();
         let expected = t * (2.0 * a_r + motor.a_d()) / 4.0;
-        assert_rel(r.indicators.v_inf, expected, 1e-12, &format!("v_inf at kappa {kappa}"));
+        assert_rel(
+            r.indicators.v_inf,
+            expected,
+            1e-12,
+            &format!("v_inf at kappa {kappa}"),
+        );
         // In steady state one reversal (back to forward slip) at T/2 and one
         // jump per period, no stiction.
         let ev = r.steady.stats.events;
-        assert_eq!((ev.reversal, ev.jump, ev.slip_to_stick), (1, 1, 0), "{ev:?}");
+        assert_eq!(
+            (ev.reversal, ev.jump, ev.slip_to_stick),
+            (1, 1, 0),
+            "{ev:?}"
+        );
         assert_eq!(r.indicators.stiction_fraction, 0.0);
         // The transient converges to the same steady state.
         let tr = r.transient.as_ref().unwrap();
@@ -59,13 +68,23 @@ fn ideal_slip_slip_velocity_matches_the_closed_form() {
 /// `a_0 > 0` to define its period).
 #[test]
 fn frictionless_slider_never_moves() {
-    for spec in [ideal(4.0, 1.0), fourier(25e-6, 36.0, 2, true), fourier(25e-6, 1.0, 5, false)] {
+    for spec in [
+        ideal(4.0, 1.0),
+        fourier(25e-6, 36.0, 2, true),
+        fourier(25e-6, 1.0, 5, false),
+    ] {
         let signal = Signal::build(&spec, &paper_motor()).unwrap();
         let mut scene = scene_with(spec);
         scene.motor = motor_with(0.0, 0.0);
         let r = run_signal(&scene, &signal);
         assert_eq!(r.indicators.v_inf, 0.0, "{:?}", scene.signal);
-        assert!(r.transient.unwrap().mean_velocities.iter().all(|v| *v == 0.0));
+        assert!(
+            r.transient
+                .unwrap()
+                .mean_velocities
+                .iter()
+                .all(|v| *v == 0.0)
+        );
         // And a kappa-based scene without friction is refused, naming the field.
         let err = simulation::run(&scene).unwrap_err().to_string();
         assert!(err.contains("signal.kappa"), "{err}");
@@ -140,7 +159,12 @@ fn transient_and_period_map_agree() {
         let r = run(&scene);
         let tr = r.transient.as_ref().unwrap();
         assert!(tr.converged, "{:?}", scene.signal);
-        assert_rel(tr.v_inf(), r.indicators.v_inf, 1e-10, &format!("{:?}", scene.signal));
+        assert_rel(
+            tr.v_inf(),
+            r.indicators.v_inf,
+            1e-10,
+            &format!("{:?}", scene.signal),
+        );
     }
 }
 
@@ -159,5 +183,10 @@ fn mirrored_harmonics_scene() {
     // x -> -x is a phase shift of pi in every harmonic (sin(u + pi) = -sin u).
     let b = simulation::run(&scene_with(make(std::f64::consts::PI))).unwrap();
     assert!(a.indicators.v_inf.abs() > 1e-3);
-    assert_rel(b.indicators.v_inf, -a.indicators.v_inf, 1e-12, "mirrored harmonics");
+    assert_rel(
+        b.indicators.v_inf,
+        -a.indicators.v_inf,
+        1e-12,
+        "mirrored harmonics",
+    );
 }

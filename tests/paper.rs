@@ -48,7 +48,10 @@ fn gibbs_overshoot_approaches_the_papers_value() {
     }
     // Richardson extrapolation of the 1/n tail (n = 64, 128) to n -> inf.
     let limit = 2.0 * last.0 - last.1;
-    assert!((limit - 0.0895).abs() < 3e-4, "extrapolated overshoot {limit}");
+    assert!(
+        (limit - 0.0895).abs() < 3e-4,
+        "extrapolated overshoot {limit}"
+    );
     // With sigma factors the overshoot nearly vanishes (section 4, figure 4).
     let s = FourierSignal::partial_sum(shape, 128, true, &motor);
     assert!((s.extrema().max - 25e-6) / 25e-6 < 0.02);
@@ -86,8 +89,18 @@ fn stroke_scaling_laws_hold_to_rounding() {
             let r = run(&scene_with(fourier(stroke, kappa, n, sigma)));
             let ratio = stroke / 25e-6;
             let what = format!("kappa {kappa}, n {n}, sigma {sigma}, stroke {stroke}");
-            assert_rel(r.indicators.v_inf * r.period, x_base * ratio, 1e-12, &format!("(38) {what}"));
-            assert_rel(r.indicators.v_inf, base.indicators.v_inf * ratio.sqrt(), 1e-12, &format!("(39) {what}"));
+            assert_rel(
+                r.indicators.v_inf * r.period,
+                x_base * ratio,
+                1e-12,
+                &format!("(38) {what}"),
+            );
+            assert_rel(
+                r.indicators.v_inf,
+                base.indicators.v_inf * ratio.sqrt(),
+                1e-12,
+                &format!("(39) {what}"),
+            );
             assert_eq!(r.startup_periods, base.startup_periods, "{what}");
             assert_rel(
                 r.startup_time().unwrap(),
@@ -96,7 +109,12 @@ fn stroke_scaling_laws_hold_to_rounding() {
                 &format!("(42) {what}"),
             );
             // Dimensionless indicators do not change at all.
-            assert_rel(r.indicators.smoothness, base.indicators.smoothness, 1e-12, &what);
+            assert_rel(
+                r.indicators.smoothness,
+                base.indicators.smoothness,
+                1e-12,
+                &what,
+            );
         }
     }
 }
@@ -114,7 +132,10 @@ struct ReferenceRow {
 }
 
 fn reference_rows() -> Vec<ReferenceRow> {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/reference/section7_grid.csv");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../shared/reference/section7_grid.csv"
+    );
     let text = std::fs::read_to_string(path).expect("reference grid beside the checkout");
     let mut reader = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
@@ -148,7 +169,10 @@ fn check_stiction(r: &stickslip::simulation::RunReport, reference: f64, what: &s
     let per_period = &r.transient.as_ref().unwrap().stick_times;
     let steady = r.indicators.stiction_fraction * r.period;
     if reference == 0.0 {
-        assert!(per_period.iter().all(|t| *t == 0.0) && steady == 0.0, "stiction {what}");
+        assert!(
+            per_period.iter().all(|t| *t == 0.0) && steady == 0.0,
+            "stiction {what}"
+        );
         return;
     }
     let mut total = 0.0;
@@ -167,14 +191,38 @@ fn reference_grid_agrees() {
     let rows = reference_rows();
     assert_eq!(rows.len(), 50);
     for row in rows {
-        let mut scene = Scene::default();
-        scene.signal = fourier(25e-6, row.sqrt_kappa.powi(2), row.n, row.sigma);
+        let scene = Scene {
+            signal: fourier(25e-6, row.sqrt_kappa.powi(2), row.n, row.sigma),
+            ..Scene::default()
+        };
         let r = run(&scene);
-        let what = format!("n {} sqrt_kappa {} sigma {}", row.n, row.sqrt_kappa, row.sigma);
-        assert_rel(r.indicators.v_inf, row.v_inf, 2e-6, &format!("v_inf {what}"));
-        assert_eq!(r.startup_periods, Some(row.startup_periods), "p_0.99 {what}");
-        assert_rel(r.indicators.smoothness, row.smoothness, 2e-4, &format!("smoothness {what}"));
-        assert_rel(r.indicators.durability, row.durability, 2e-4, &format!("durability {what}"));
+        let what = format!(
+            "n {} sqrt_kappa {} sigma {}",
+            row.n, row.sqrt_kappa, row.sigma
+        );
+        assert_rel(
+            r.indicators.v_inf,
+            row.v_inf,
+            2e-6,
+            &format!("v_inf {what}"),
+        );
+        assert_eq!(
+            r.startup_periods,
+            Some(row.startup_periods),
+            "p_0.99 {what}"
+        );
+        assert_rel(
+            r.indicators.smoothness,
+            row.smoothness,
+            2e-4,
+            &format!("smoothness {what}"),
+        );
+        assert_rel(
+            r.indicators.durability,
+            row.durability,
+            2e-4,
+            &format!("durability {what}"),
+        );
         check_stiction(&r, row.stiction_fraction, &what);
         assert_rel(
             r.velocity_per_power().unwrap(),

@@ -72,7 +72,11 @@ pub fn solve(
             return Root {
                 t,
                 iterations: iteration,
-                bracket: if df != 0.0 { (2.0 * f_tol / df).abs() } else { hi - lo },
+                bracket: if df != 0.0 {
+                    (2.0 * f_tol / df).abs()
+                } else {
+                    hi - lo
+                },
             };
         }
         if f.is_sign_positive() == lo_positive {
@@ -81,6 +85,14 @@ pub fn solve(
             hi = t;
         }
         let newton = t - f / df;
+        if df != 0.0 && (newton - t).abs() <= tol {
+            // Converged: the Newton correction is below the tolerance.
+            return Root {
+                t: newton.clamp(lo, hi),
+                iterations: iteration,
+                bracket: 2.0 * (newton - t).abs(),
+            };
+        }
         let newton_ok = df != 0.0
             && newton.is_finite()
             && newton > lo
@@ -89,11 +101,11 @@ pub fn solve(
         let next = if newton_ok { newton } else { 0.5 * (lo + hi) };
         step_before_last = last_step;
         last_step = next - t;
-        if last_step.abs() <= tol || hi - lo <= tol {
+        if hi - lo <= tol {
             return Root {
                 t: next.clamp(lo, hi),
                 iterations: iteration,
-                bracket: (hi - lo).min(2.0 * last_step.abs()),
+                bracket: hi - lo,
             };
         }
         t = next;
@@ -112,7 +124,14 @@ mod tests {
     #[test]
     fn linear_function_is_solved_by_the_first_secant_step() {
         // f(t) = 3 t - 1, root 1/3 (closed form).
-        let r = solve(|t| (3.0 * t - 1.0, 3.0), (0.0, 1.0), (-1.0, 2.0), 1e-15, 0.0, None);
+        let r = solve(
+            |t| (3.0 * t - 1.0, 3.0),
+            (0.0, 1.0),
+            (-1.0, 2.0),
+            1e-15,
+            0.0,
+            None,
+        );
         assert!((r.t - 1.0 / 3.0).abs() <= 1e-16);
         assert!(r.iterations <= 2);
     }
@@ -128,14 +147,21 @@ mod tests {
             0.0,
             None,
         );
-        assert!((r.t - std::f64::consts::FRAC_PI_2).abs() <= 4e-16);
+        assert!((r.t - std::f64::consts::FRAC_PI_2).abs() <= 4e-16, "{r:?}");
     }
 
     #[test]
     fn noise_level_stops_the_iteration() {
         // f(t) = t - 0.25 seen through noise of 1e-9: a point with
         // |f| <= 1e-9 is accepted, within 1e-9 of the root.
-        let r = solve(|t| (t - 0.25, 1.0), (0.0, 1.0), (-0.25, 0.75), 0.0, 1e-9, None);
+        let r = solve(
+            |t| (t - 0.25, 1.0),
+            (0.0, 1.0),
+            (-0.25, 0.75),
+            0.0,
+            1e-9,
+            None,
+        );
         assert!((r.t - 0.25).abs() <= 1e-9);
     }
 

@@ -52,8 +52,7 @@
 
 use super::bracket;
 use super::{
-    Direction, Event, EventKind, Kinematics, Mode, PeriodEngine, PeriodStart, Segment,
-    WorkCounters,
+    Direction, Event, EventKind, Kinematics, Mode, PeriodEngine, PeriodStart, Segment, WorkCounters,
 };
 use crate::error::SimulationError;
 use crate::motor::Motor;
@@ -206,7 +205,6 @@ impl<'s> EventEngine<'s> {
         self.tol_v
     }
 
-
     fn band_at(&self, tau: f64) -> (usize, Band) {
         let i = self
             .band
@@ -350,30 +348,30 @@ impl<'s> EventEngine<'s> {
             let rod_end = self.signal.state_before(end);
             let dx = rod_end.x - rod_start.x;
             if observer.wants_segments() {
-            let segment = Segment {
-                period: walk.period,
-                start: walk.tau,
-                end,
-                mode: Mode::Stick,
-                slider_start: Kinematics {
-                    x: walk.x,
-                    v: rod_start.v,
-                },
-                slider_end: Kinematics {
-                    x: walk.x + dx,
-                    v: rod_end.v,
-                },
-                rod_start: Kinematics {
-                    x: rod_start.x,
-                    v: rod_start.v,
-                },
-                rod_end: Kinematics {
-                    x: rod_end.x,
-                    v: rod_end.v,
-                },
-                slip_acceleration: 0.0,
-            };
-            observer.segment(&segment, self.signal);
+                let segment = Segment {
+                    period: walk.period,
+                    start: walk.tau,
+                    end,
+                    mode: Mode::Stick,
+                    slider_start: Kinematics {
+                        x: walk.x,
+                        v: rod_start.v,
+                    },
+                    slider_end: Kinematics {
+                        x: walk.x + dx,
+                        v: rod_end.v,
+                    },
+                    rod_start: Kinematics {
+                        x: rod_start.x,
+                        v: rod_start.v,
+                    },
+                    rod_end: Kinematics {
+                        x: rod_end.x,
+                        v: rod_end.v,
+                    },
+                    slip_acceleration: 0.0,
+                };
+                observer.segment(&segment, self.signal);
             }
             walk.x += dx;
             walk.v = rod_end.v;
@@ -575,7 +573,8 @@ impl<'s> EventEngine<'s> {
                         }
                     }
                 }
-                let kind = transition(old, mode, grazing).unwrap_or(EventKind::Grazing { then: mode });
+                let kind =
+                    transition(old, mode, grazing).unwrap_or(EventKind::Grazing { then: mode });
                 self.emit(walk, kind, observer)
             }
         }

@@ -559,6 +559,7 @@ fn householder_similarity(m: &DMatrix<Complex<f64>>, seed: &mut u64) -> DMatrix<
     };
     let v = nalgebra::DVector::<Complex<f64>>::from_fn(n, |_, _| Complex::new(next(), next()));
     let vv = v.norm_squared();
-    let h = DMatrix::<Complex<f64>>::identity(n, n) - (&v * v.adjoint()) * Complex::new(2.0 / vv, 0.0);
+    let h =
+        DMatrix::<Complex<f64>>::identity(n, n) - (&v * v.adjoint()) * Complex::new(2.0 / vv, 0.0);
     &h * m * &h
 }

@@ -450,10 +450,7 @@ impl Signal {
         let mut lo = f64::INFINITY;
         let mut hi = f64::NEG_INFINITY;
         for piece in &part.pieces {
-            for v in [
-                self.state(piece.start).v,
-                self.state_before(piece.end).v,
-            ] {
+            for v in [self.state(piece.start).v, self.state_before(piece.end).v] {
                 lo = lo.min(v);
                 hi = hi.max(v);
             }
