@@ -13,7 +13,9 @@ use crate::simulation::RunReport;
 use serde_json::{Map, Value, json};
 use std::fmt::Write as _;
 
-/// `value` rounded to the digits its absolute error `err` supports.
+/// `value` rounded to the digits its absolute error `err` supports (15
+/// significant digits without an estimate), then `± err`; an error of 0
+/// prints as `(exact)`. Moderate magnitudes print in plain decimal notation.
 pub fn format_with_error(value: f64, err: Option<f64>) -> String {
     if !value.is_finite() {
         return "none".to_owned();
@@ -25,9 +27,22 @@ pub fn format_with_error(value: f64, err: Option<f64>) -> String {
         }
         _ => 15,
     };
-    let text = format!("{:.*e}", (digits - 1) as usize, value);
+    let magnitude = if value == 0.0 {
+        0
+    } else {
+        value.abs().log10().floor() as i32
+    };
+    let text = if value == 0.0 {
+        "0".to_owned()
+    } else if (-4..6).contains(&magnitude) {
+        let decimals = (digits - 1 - magnitude).max(0) as usize;
+        format!("{value:.decimals$}")
+    } else {
+        format!("{:.*e}", (digits - 1) as usize, value)
+    };
     match err {
-        Some(e) => format!("{text} ± {e:.1e}"),
+        Some(e) if e > 0.0 => format!("{text} ± {e:.1e}"),
+        Some(_) => format!("{text} (exact)"),
         None => text,
     }
 }
@@ -179,8 +194,12 @@ pub fn to_text(r: &RunReport) -> String {
                 (Some(t), Some(p)) => line(
                     &mut out,
                     "startup_time",
-                    format!("{} ({p} periods)", format_with_error(t, e.startup_time)),
-                    "s",
+                    format!(
+                        "{} s = {p} period{}",
+                        format_with_error(t, e.startup_time),
+                        if p == 1 { "" } else { "s" }
+                    ),
+                    "",
                 ),
                 _ => line(&mut out, "startup_time", "not reached".into(), ""),
             },
