@@ -169,6 +169,9 @@ pub struct SteadyState {
     pub iterations: u32,
     /// Size of the last fixed-point correction (m/s).
     pub last_correction: f64,
+    /// Bound on the velocity error one steady-state period introduces
+    /// through the engine's tolerances (m/s), if the engine states one.
+    pub velocity_uncertainty: Option<f64>,
 }
 
 /// The start-up from rest.
@@ -480,6 +483,7 @@ pub fn steady_state<E: PeriodEngine, O: Observer>(
         stats: stats.last,
         iterations,
         last_correction,
+        velocity_uncertainty: engine.last_velocity_uncertainty(),
     })
 }
 

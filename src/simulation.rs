@@ -182,9 +182,13 @@ pub fn run_with<E: PeriodEngine>(
 }
 
 /// Error estimates from measurable quantities:
-/// * `v_inf`: the disagreement of the two independent steady states (the
-///   transient's last period and the period map's fixed point) plus a
-///   rounding bound of `16 eps` of the rod's position scale per segment;
+/// * `v_inf`: the engine's bound `u` on the velocity error one period
+///   introduces (event-time brackets times the jump in slider acceleration
+///   at each event, plus zero-velocity decisions), carried to the fixed
+///   point as `u / (1 - P')` with the period map's derivative `P'`, plus
+///   `u` again for the steady-state period itself, plus a rounding bound of
+///   `8 eps` per segment on velocities and positions. Without an engine
+///   bound, the disagreement of transient and fixed point is used;
 /// * ratios (smoothness, durability, friction energy) carry the relative
 ///   error of `v_inf` and the same rounding bound on their own inputs;
 /// * `p_0.99` is exact unless a `v_p` lies within the `v_inf` error of the
@@ -199,15 +203,21 @@ fn estimate_errors(
     let period = signal.period();
     let v_scale = signal.velocity_scale();
     let segments = steady.stats.events.total() as f64 + 2.0;
-    let rounding = 16.0 * f64::EPSILON * segments * v_scale;
-    let disagreement = if transient.converged {
-        (transient.v_inf() - steady.v_inf).abs()
-    } else {
-        (transient.v_inf() - steady.v_inf)
-            .abs()
-            .max(steady.last_correction)
+    let rounding_v = 8.0 * f64::EPSILON * segments * v_scale;
+    let rounding_x = 8.0 * f64::EPSILON * segments * (v_scale * period + steady.stats.step.abs());
+    let dv = match steady.velocity_uncertainty {
+        Some(u) => {
+            let contraction = (1.0 - steady.map_derivative).max(1e-3);
+            (u + rounding_v) / contraction + u + rounding_v + rounding_x / period
+        }
+        None => {
+            (transient.v_inf() - steady.v_inf)
+                .abs()
+                .max(steady.last_correction)
+                + rounding_v
+                + rounding_x / period
+        }
     };
-    let dv = disagreement + rounding;
     let rel = dv / ind.v_inf.abs() + 16.0 * f64::EPSILON * segments;
     let startup = startup_periods.map(|p| {
         let threshold = 0.99 * steady.v_inf;

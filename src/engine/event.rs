@@ -126,12 +126,14 @@ pub struct EventEngine<'s> {
     rod_at_start: RodState,
     rod_at_end: RodState,
     counters: WorkCounters,
+    last_uncertainty: f64,
 }
 
 /// How a slip phase ended.
 enum SlipEnd {
-    /// Transversal zero of `v_rel` at this phase.
-    Crossing(f64),
+    /// Transversal zero of `v_rel` at this phase, known to within the
+    /// second value (s).
+    Crossing(f64, f64),
     /// Tangential touch at this critical point.
     Grazing(f64),
     /// A rod jump at this phase.
@@ -187,6 +189,7 @@ impl<'s> EventEngine<'s> {
             rod_at_start: signal.state(0.0),
             rod_at_end: signal.state_before(period),
             counters: WorkCounters::default(),
+            last_uncertainty: 0.0,
         }
     }
 
@@ -244,6 +247,7 @@ impl<'s> EventEngine<'s> {
             x: 0.0,
             v: start.velocity,
             map_derivative: 1.0,
+            uncertainty: 0.0,
             events: 0,
             mode: Mode::Stick,
             departure: false,
@@ -259,6 +263,7 @@ impl<'s> EventEngine<'s> {
             }
         }
         self.counters.periods += 1;
+        self.last_uncertainty = walk.uncertainty;
         let end = PeriodEnd {
             period,
             step: walk.x,
@@ -292,6 +297,7 @@ impl<'s> EventEngine<'s> {
         walk.mode = mode;
         walk.departure = v_rel.abs() <= self.tol_v;
         if mode == Mode::Stick {
+            walk.uncertainty += (rod0.v - walk.v).abs();
             walk.v = rod0.v;
             walk.map_derivative = 0.0;
         }
@@ -483,7 +489,7 @@ impl<'s> EventEngine<'s> {
                     let f_lo = f_start_of(lo);
                     evaluations += 1;
                     if f_lo <= 0.0 {
-                        break SlipEnd::Crossing(lo);
+                        break SlipEnd::Crossing(lo, 0.0);
                     }
                     let root = bracket::solve(
                         |t| {
@@ -499,7 +505,7 @@ impl<'s> EventEngine<'s> {
                     hints[j] = root.t;
                     iterations += u64::from(root.iterations);
                     evaluations += u64::from(root.iterations);
-                    break SlipEnd::Crossing(root.t);
+                    break SlipEnd::Crossing(root.t, root.bracket);
                 }
             }
             if at_period_end {
@@ -513,7 +519,7 @@ impl<'s> EventEngine<'s> {
         self.counters.evaluations += evaluations;
         self.counters.root_iterations += iterations;
         let end = match outcome {
-            SlipEnd::Crossing(t) | SlipEnd::Grazing(t) | SlipEnd::Jump(t) => t,
+            SlipEnd::Crossing(t, _) | SlipEnd::Grazing(t) | SlipEnd::Jump(t) => t,
             SlipEnd::PeriodEnd => self.period,
         };
         // Closed-form slip segment [tau0, end].
@@ -549,14 +555,30 @@ impl<'s> EventEngine<'s> {
         match outcome {
             SlipEnd::PeriodEnd => Ok(()),
             SlipEnd::Jump(_) => self.jump(walk, observer),
-            SlipEnd::Crossing(t) | SlipEnd::Grazing(t) => {
-                let grazing = matches!(outcome, SlipEnd::Grazing(_));
+            SlipEnd::Crossing(t, _) | SlipEnd::Grazing(t) => {
+                let (grazing, time_error) = match outcome {
+                    SlipEnd::Crossing(_, e) => (false, e),
+                    _ => (true, 0.0),
+                };
                 let mode = self.mode_for(0.0, t);
                 let old = walk.mode;
                 walk.mode = mode;
+                let a_r = signal.acceleration(t);
+                let a_new = match mode {
+                    Mode::Stick => a_r,
+                    Mode::Slip(Direction::Forward) => self.slip_forward.1,
+                    Mode::Slip(Direction::Backward) => self.slip_backward.1,
+                };
+                // An event time off by dt leaves the slider with the old
+                // acceleration for dt too long or too short: its velocity is
+                // off by |a_old - a_new| dt. A grazing decision may move the
+                // velocity by up to tol_v.
+                walk.uncertainty += (a_s - a_new).abs() * time_error;
                 match mode {
                     Mode::Stick => {
-                        walk.v = signal.velocity(t);
+                        let v_rod = signal.velocity(t);
+                        walk.uncertainty += (v_rod - walk.v).abs();
+                        walk.v = v_rod;
                         walk.map_derivative = 0.0;
                     }
                     Mode::Slip(new_dir) => {
@@ -564,14 +586,12 @@ impl<'s> EventEngine<'s> {
                         if new_dir != dir {
                             // Perturbation of the crossing time carries over
                             // as dv_after = dv (a_R - a_new) / (a_R - a_old).
-                            let a_r = signal.acceleration(t);
-                            let a_new = match new_dir {
-                                Direction::Forward => self.slip_forward.1,
-                                Direction::Backward => self.slip_backward.1,
-                            };
                             walk.map_derivative *= (a_r - a_new) / (a_r - a_s);
                         }
                     }
+                }
+                if grazing {
+                    walk.uncertainty += self.tol_v;
                 }
                 let kind =
                     transition(old, mode, grazing).unwrap_or(EventKind::Grazing { then: mode });
@@ -588,6 +608,9 @@ struct Walk {
     x: f64,
     v: f64,
     map_derivative: f64,
+    /// Bound on the slider velocity error introduced in this period by
+    /// event-time tolerances and zero-velocity decisions (m/s).
+    uncertainty: f64,
     events: u64,
     mode: Mode,
     /// `v_rel = 0` at `tau` and the mode is a slip leaving zero: the piece
@@ -662,5 +685,9 @@ impl PeriodEngine for EventEngine<'_> {
 
     fn zero_velocity_tolerance(&self) -> f64 {
         self.tol_v
+    }
+
+    fn last_velocity_uncertainty(&self) -> Option<f64> {
+        Some(self.last_uncertainty)
     }
 }

@@ -266,4 +266,11 @@ pub trait PeriodEngine {
 
     /// Below this `|v_rel|` (m/s) counts as zero.
     fn zero_velocity_tolerance(&self) -> f64;
+
+    /// A bound on the slider velocity error the last simulated period
+    /// introduced through the engine's tolerances (m/s), when the engine
+    /// can state one.
+    fn last_velocity_uncertainty(&self) -> Option<f64> {
+        None
+    }
 }
