@@ -100,10 +100,13 @@ impl ParamError {
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum SimulationError {
     /// The period map has no fixed point: the slider does not settle into a
-    /// periodic motion but keeps accelerating in one direction.
+    /// periodic motion but keeps accelerating in one direction (a run-away:
+    /// the extra acceleration exceeds what sliding friction can hold).
     #[error(
-        "no periodic steady state: the slider velocity keeps {direction} \
-         (boundary velocity {velocity} m/s after {periods} periods)"
+        "no periodic steady state: the slider runs away, its velocity keeps {direction} \
+         (slider velocity {velocity:e} m/s after {periods} periods, outside the rod's \
+         velocity range, sliding without any event; motor.extra_acceleration exceeds \
+         what sliding friction can hold)"
     )]
     NoSteadyState {
         /// "growing" or "falling".

@@ -185,6 +185,9 @@ pub struct Transient {
     pub final_mode: Mode,
     /// True if the period-to-period change died out before the limit.
     pub converged: bool,
+    /// Aitken's extrapolation of the mean velocities to `p -> inf`, when
+    /// the transient stopped on it.
+    pub extrapolated_v_inf: Option<f64>,
     /// Time in stick over the whole transient (s), if asked.
     pub stick_time: f64,
     /// Time in stick in every period (s), if asked.
@@ -230,10 +233,11 @@ impl Transient {
         self.mean_velocities.len() as u64
     }
 
-    /// `v_p` of the last simulated period: the transient's estimate of
-    /// `v_inf`.
+    /// The transient's estimate of `v_inf`: Aitken's extrapolation when the
+    /// transient stopped on it, else `v_p` of the last simulated period.
     pub fn v_inf(&self) -> f64 {
-        self.mean_velocities.last().copied().unwrap_or(0.0)
+        self.extrapolated_v_inf
+            .unwrap_or_else(|| self.mean_velocities.last().copied().unwrap_or(0.0))
     }
 
     /// `p_0.99` for a given `v_inf`: the first period with
@@ -271,7 +275,7 @@ impl Default for AnalysisOptions {
     fn default() -> Self {
         Self {
             max_periods: 1_000_000,
-            transient_tolerance: 1e-14,
+            transient_tolerance: 1e-13,
         }
     }
 }
@@ -285,6 +289,7 @@ pub fn transient<E: PeriodEngine, O: Observer>(
     observer: &mut O,
 ) -> Result<Transient, SimulationError> {
     let v_scale = engine.signal().velocity_scale();
+    let (lo_r, hi_r) = engine.signal().velocity_range();
     let period = engine.signal().period();
     let tol = options.transient_tolerance * v_scale;
     let mut stats = StatsObserver::new(
@@ -298,8 +303,10 @@ pub fn transient<E: PeriodEngine, O: Observer>(
         velocity: 0.0,
         mode: None,
     };
-    let mut mean_velocities = Vec::new();
+    let mut mean_velocities: Vec<f64> = Vec::new();
     let mut last_change: Option<f64> = None;
+    let mut last_limit: Option<f64> = None;
+    let mut extrapolated = None;
     let mut converged = false;
     let mut stick_time = 0.0;
     let mut stick_times = Vec::new();
@@ -309,7 +316,8 @@ pub fn transient<E: PeriodEngine, O: Observer>(
     while p < options.max_periods {
         p += 1;
         let end = engine.run_period(p, start, &mut (&mut stats, &mut *observer))?;
-        mean_velocities.push(end.step / period);
+        let v_p = end.step / period;
+        mean_velocities.push(v_p);
         displacement.add(end.step);
         stick_time += stats.last.stick_time;
         if wanted.stiction {
@@ -321,17 +329,37 @@ pub fn transient<E: PeriodEngine, O: Observer>(
             velocity: end.velocity,
             mode: Some(end.mode),
         };
-        if p >= 2 {
-            if change == 0.0 {
-                converged = true;
-                break;
-            }
-            if let Some(before) = last_change {
-                // Geometric tail: remaining distance ~ |change| rho / (1 - rho).
-                let rho = (change / before).abs();
-                if rho < 1.0 && change.abs() * rho / (1.0 - rho) <= tol && change.abs() <= tol {
+        if p >= 2 && change == 0.0 {
+            converged = true;
+            break;
+        }
+        runaway(&end, stats.last.events.total(), change, (lo_r, hi_r), p)?;
+        if let Some(before) = last_change {
+            // Geometric tail: remaining distance ~ |change| rho / (1 - rho).
+            let rho = (change / before).abs();
+            if rho < 1.0 {
+                let tail = change.abs() * rho / (1.0 - rho);
+                if tail <= tol && change.abs() <= tol {
                     converged = true;
                     break;
+                }
+                // Aitken's extrapolation of the mean velocities; stop once
+                // two successive limits agree and start-up is long past.
+                let n = mean_velocities.len();
+                if n >= 3 {
+                    let (a, b, c) = (mean_velocities[n - 3], mean_velocities[n - 2], v_p);
+                    let denominator = (c - b) - (b - a);
+                    if denominator != 0.0 {
+                        let limit = c - (c - b) * (c - b) / denominator;
+                        let settled = last_limit.is_some_and(|l| (l - limit).abs() <= tol);
+                        let past_startup = (limit - c).abs() <= 1e-6 * limit.abs();
+                        if settled && past_startup {
+                            extrapolated = Some(limit);
+                            converged = true;
+                            break;
+                        }
+                        last_limit = Some(limit);
+                    }
                 }
             }
         }
@@ -342,10 +370,42 @@ pub fn transient<E: PeriodEngine, O: Observer>(
         final_velocity: start.velocity,
         final_mode: start.mode.unwrap_or(Mode::Stick),
         converged,
+        extrapolated_v_inf: extrapolated,
         stick_time,
         stick_times,
         events,
         displacement: displacement.value(),
+    })
+}
+
+/// A slider that slid a whole period in one direction without any event,
+/// ends outside the rod's velocity range and moved further away cannot
+/// come back: `v_rel` never reaches zero again and its acceleration is
+/// constant. This is a run-away (the extra acceleration `g_t` exceeds what
+/// sliding friction `a_d` can hold), reported instead of simulated forever.
+fn runaway(
+    end: &PeriodEnd,
+    events: u64,
+    change: f64,
+    (lo_r, hi_r): (f64, f64),
+    periods: u64,
+) -> Result<(), SimulationError> {
+    if events != 0 {
+        return Ok(());
+    }
+    let direction = match end.mode {
+        Mode::Slip(crate::engine::Direction::Backward) if end.velocity > hi_r && change > 0.0 => {
+            "growing"
+        }
+        Mode::Slip(crate::engine::Direction::Forward) if end.velocity < lo_r && change < 0.0 => {
+            "falling"
+        }
+        _ => return Ok(()),
+    };
+    Err(SimulationError::NoSteadyState {
+        direction,
+        velocity: end.velocity,
+        periods,
     })
 }
 
@@ -364,7 +424,7 @@ fn period_map<E: PeriodEngine>(engine: &mut E, v: f64) -> Result<(f64, f64), Sim
 
 /// Largest number of bracket expansions before the search gives up and
 /// reports that the slider runs away.
-const MAX_EXPANSIONS: u32 = 60;
+const MAX_EXPANSIONS: u32 = 24;
 /// Iteration limit of the fixed-point search.
 const MAX_FIXED_POINT_ITERATIONS: u32 = 200;
 

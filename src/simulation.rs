@@ -4,6 +4,7 @@
 //! its error estimate, the work counters and the wall time.
 
 use crate::engine::event::{EventEngine, EventOptions};
+use crate::engine::fixed_step::{FixedStepEngine, FixedStepOptions};
 use crate::engine::{Event, EventCounts, PeriodEngine, Segment, WorkCounters};
 use crate::error::Error;
 use crate::indicators::{
@@ -110,10 +111,14 @@ pub fn run(scene: &Scene) -> Result<RunReport, Error> {
             let engine = EventEngine::new(&signal, &motor, EventOptions::default());
             run_with(engine, scene, &motor)
         }
-        EngineKind::Fixed => Err(Error::Param(crate::error::ParamError::Inconsistent {
-            field: "run.engine".to_owned(),
-            reason: "\"fixed\" is not available in this version; use \"event\"".to_owned(),
-        })),
+        EngineKind::Fixed => {
+            let options = FixedStepOptions {
+                steps_per_harmonic: scene.run.steps_per_harmonic,
+                ..FixedStepOptions::default()
+            };
+            let engine = FixedStepEngine::new(&signal, &motor, options);
+            run_with(engine, scene, &motor)
+        }
     }
 }
 

@@ -17,6 +17,7 @@ use crate::signal::Signal;
 
 pub mod bracket;
 pub mod event;
+pub mod fixed_step;
 pub mod trig_roots;
 
 /// Direction of sliding, seen from the slider: `Forward` while the rod is

@@ -1,0 +1,474 @@
+//! The fixed-step reference integrator (MODEL.md section 1, true stick, no
+//! smoothing): the method of the paper's section 7, which used 5000 fixed
+//! steps per period of the highest harmonic, made available in the same
+//! program so that its results can be compared indicator by indicator with
+//! the exact [event engine](super::event).
+//!
+//! ## Grid
+//! A period `T` of a signal with `n` harmonics is cut into
+//! `N = n x steps_per_harmonic` steps of equal length `h = T / N`; node
+//! `k` lies at phase `tau_k = k h` (`tau_N = T` exactly), so time is kept as
+//! `(period index, step index)` and phases never drift. The ideal signal
+//! (11) has no highest harmonic; it counts as `n = 1`, so `N` steps span its
+//! whole period. A rod jump inside the period (discrete ideal signal, at
+//! `t_1`) becomes an extra node: the step holding it is split in two, and a
+//! node closer than `1e-6 h` to `t_1` is moved onto it so that no step is
+//! vanishingly short.
+//!
+//! ## Scheme (velocity level, Moreau-Jean type)
+//! Over a step `[tau_k, tau_k + h]` the slider's acceleration `a_k` is taken
+//! constant and chosen by the Coulomb law at the step *end* (implicit in the
+//! contact, like Moreau's sweeping process). With the rod velocity at the
+//! step end `v_R1 = v_R(tau_k + h)` (left limit) and the slider velocity
+//! `v_k`, the acceleration a stuck slider would need is
+//!
+//! ```text
+//! a_req = (v_R1 - v_k) / h
+//! ```
+//!
+//! and with the slip accelerations `a_f = a_d + g_t`, `a_b = -a_d + g_t` and
+//! the band `[a_0^-, a_0^+]`:
+//!
+//! * **stuck at `tau_k`** (`v_k = v_R(tau_k)`, so `a_req` is the mean of
+//!   `a_R` over the step): stick if `a_0^- <= a_req <= a_0^+`, else slip
+//!   forward (`a_req > a_0^+`) or backward (`a_req < a_0^-`);
+//! * **slipping forward**: keep slipping if the predicted relative
+//!   velocity `v_R1 - (v_k + h a_f) = h (a_req - a_f)` is still positive;
+//!   if it is not, `v_rel` reached zero inside the step, and the slider
+//!   sticks if `a_req >= a_0^-` (the static friction can hold it) or
+//!   reverses to backward slip if `a_req < a_0^-`; mirrored for backward.
+//!
+//! Then `v_{k+1} = v_R1` in stick and `v_{k+1} = v_k + h a_k` in slip, and
+//! the position follows the constant acceleration exactly,
+//! `x_{k+1} = x_k + h (v_k + v_{k+1}) / 2`. Every outcome is consistent
+//! with the Coulomb law at the step end: after a slip decision the new
+//! relative velocity has the sign of the slip direction (`a_0^- <= a_b` and
+//! `a_f <= a_0^+` because `a_d <= a_0`). Static friction holds only a slider
+//! that is stuck or comes to rest within the step, which resolves the
+//! ambiguity `mu_d < mu_0` leaves (a slider slipping with
+//! `a_f < a_req <= a_0^+` keeps slipping).
+//!
+//! **Why first order.** Between events both the slip phases (constant
+//! acceleration) and the stick phases (`v_S = v_R` at every node) are exact
+//! at the nodes; the only error is where an event falls inside a step:
+//! the whole step is given to the new mode, so the slider velocity is off by
+//! `|Delta a| theta h` (`Delta a` the jump of the slider acceleration,
+//! `theta` in `[0, 1)` the event's fraction of the step), an `O(h)` error
+//! per event, `O(h)` after a fixed number of events per period. The
+//! constant depends on where the events fall on the grid, so the error is
+//! `C(h) h` with a `C` that scatters between resolutions: a convergence
+//! order is only meaningful over several doublings.
+//!
+//! ## What it reports
+//! The same [`Segment`]s, [`Event`]s and period ends as the event engine, so
+//! every observer and indicator works unchanged:
+//!
+//! * consecutive steps of equal mode are merged into one segment; a slip
+//!   segment is a true constant-acceleration piece, a stick segment follows
+//!   the nodes of the rod (its first step may start off the rod velocity, the
+//!   step in which the slider came to rest);
+//! * a mode change is an event at the node where the step in the new mode
+//!   starts, so the true event lies within one step after it (to the
+//!   accuracy of the slider velocity); a tangency of `v_rel` cannot be told
+//!   from a crossing on a grid and is reported as `SlipToStick`;
+//! * rod jumps are `Jump` events at their exact phase; the slider velocity
+//!   does not change, and the mode after the jump follows from the sign of
+//!   the new `v_rel` (with the zero-velocity tolerance below; a `v_rel`
+//!   within it is decided by the band `a_R` lies in right after the jump);
+//! * the period map is a step function of the start velocity (an event
+//!   moves by whole steps), so its derivative carries no information:
+//!   [`PeriodEnd::map_derivative`] is `NaN`, and
+//!   [`crate::indicators::fixed_point`] falls back to bisection.
+//!
+//! A slider whose `|v_rel|` at a period start (or after a rod jump) is at
+//! most `tol_v = velocity_tolerance x max |v_R|` counts as resting on the
+//! rod, as in the event engine.
+
+use super::{
+    Direction, Event, EventKind, Kinematics, Mode, PeriodEngine, PeriodStart, Segment, WorkCounters,
+};
+use crate::error::SimulationError;
+use crate::motor::Motor;
+use crate::observer::{Observer, PeriodEnd};
+use crate::signal::{RodState, Signal};
+
+/// Settings of the fixed-step reference.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixedStepOptions {
+    /// Steps per period of the highest harmonic (`>= 1`); the paper used
+    /// 5000 (section 7). The default.
+    pub steps_per_harmonic: u32,
+    /// Zero-velocity tolerance relative to `max |v_R|`, for the slider's
+    /// mode at a period start or after a rod jump (as in the event engine).
+    pub velocity_tolerance: f64,
+}
+
+impl Default for FixedStepOptions {
+    /// 5000 steps per harmonic period, velocity tolerance `1e-13`.
+    fn default() -> Self {
+        Self {
+            steps_per_harmonic: 5000,
+            velocity_tolerance: 1e-13,
+        }
+    }
+}
+
+/// The fixed-step reference engine for one signal and motor.
+#[derive(Debug, Clone)]
+pub struct FixedStepEngine<'s> {
+    signal: &'s Signal,
+    period: f64,
+    /// Steps per period `N`.
+    steps: u64,
+    /// Step length `h = T / N` (s).
+    h: f64,
+    /// Jump phase inside `(0, T)` (discrete ideal signal).
+    inner_jump: Option<f64>,
+    /// The rod jumps at phase 0 from period 2 on (continuous ideal signal).
+    jump_at_start: bool,
+    a_plus: f64,
+    a_minus: f64,
+    a_forward: f64,
+    a_backward: f64,
+    tol_v: f64,
+    rod_at_start: RodState,
+    rod_at_end: RodState,
+    counters: WorkCounters,
+}
+
+/// Mutable state of the walk through one period.
+struct Walk {
+    period: u64,
+    /// Phase of the current node (s).
+    tau: f64,
+    /// Slider position relative to the period start (m).
+    x: f64,
+    /// Slider velocity (m/s).
+    v: f64,
+    mode: Mode,
+    /// The open segment: start phase, mode, slider and rod at its start.
+    segment_start: f64,
+    segment_slider: Kinematics,
+}
+
+impl<'s> FixedStepEngine<'s> {
+    /// Prepares the engine.
+    ///
+    /// # Panics
+    /// If `options.steps_per_harmonic` is 0 (a scene rejects that value
+    /// before it gets here).
+    pub fn new(signal: &'s Signal, motor: &Motor, options: FixedStepOptions) -> Self {
+        assert!(
+            options.steps_per_harmonic >= 1,
+            "steps_per_harmonic must be at least 1"
+        );
+        let period = signal.period();
+        let harmonics = match signal {
+            Signal::Fourier(s) => s.degree().max(1) as u64,
+            Signal::Ideal(_) => 1,
+        };
+        let steps = harmonics * u64::from(options.steps_per_harmonic);
+        let v_scale = signal.velocity_scale().max(f64::MIN_POSITIVE);
+        let jump = signal.jump_phase();
+        Self {
+            signal,
+            period,
+            steps,
+            h: period / steps as f64,
+            inner_jump: jump.filter(|t| *t > 0.0 && *t < period),
+            jump_at_start: jump == Some(0.0),
+            a_plus: motor.a_0_plus(),
+            a_minus: motor.a_0_minus(),
+            a_forward: motor.slip_forward_acceleration(),
+            a_backward: motor.slip_backward_acceleration(),
+            tol_v: options.velocity_tolerance * v_scale,
+            rod_at_start: signal.state(0.0),
+            rod_at_end: signal.state_before(period),
+            counters: WorkCounters::default(),
+        }
+    }
+
+    /// Steps per period `N = n x steps_per_harmonic`.
+    pub fn steps_per_period(&self) -> u64 {
+        self.steps
+    }
+
+    /// Step length `h = T / N` (s).
+    pub fn step(&self) -> f64 {
+        self.h
+    }
+
+    /// Phase of node `k` (`k <= N`): exact multiples of `h`, and `T` itself
+    /// at the end.
+    fn node(&self, k: u64) -> f64 {
+        if k >= self.steps {
+            self.period
+        } else {
+            k as f64 * self.h
+        }
+    }
+
+    /// The mode of a slider with relative velocity `v_rel` at phase `tau`
+    /// (right limit): slip in the direction of `v_rel`, or, within the
+    /// zero-velocity tolerance, the mode the band of `a_R(tau+)` gives.
+    fn mode_for(&self, v_rel: f64, tau: f64) -> Mode {
+        if v_rel.abs() <= self.tol_v {
+            let a = self.signal.state(tau).a;
+            if a > self.a_plus {
+                Mode::Slip(Direction::Forward)
+            } else if a < self.a_minus {
+                Mode::Slip(Direction::Backward)
+            } else {
+                Mode::Stick
+            }
+        } else if v_rel > 0.0 {
+            Mode::Slip(Direction::Forward)
+        } else {
+            Mode::Slip(Direction::Backward)
+        }
+    }
+
+    /// One step of the scheme (module doc): the mode on the step and the
+    /// slider velocity at its end, from the mode and velocity at its start,
+    /// the rod velocity at its end and its length.
+    #[inline]
+    fn step_law(&self, mode: Mode, v: f64, v_rod_end: f64, h: f64) -> (Mode, f64) {
+        let a_req = (v_rod_end - v) / h;
+        let forward = (Mode::Slip(Direction::Forward), v + h * self.a_forward);
+        let backward = (Mode::Slip(Direction::Backward), v + h * self.a_backward);
+        let stick = (Mode::Stick, v_rod_end);
+        match mode {
+            Mode::Stick => {
+                if a_req > self.a_plus {
+                    forward
+                } else if a_req < self.a_minus {
+                    backward
+                } else {
+                    stick
+                }
+            }
+            Mode::Slip(Direction::Forward) => {
+                if v_rod_end - forward.1 > 0.0 {
+                    forward
+                } else if a_req < self.a_minus {
+                    backward
+                } else {
+                    stick
+                }
+            }
+            Mode::Slip(Direction::Backward) => {
+                if v_rod_end - backward.1 < 0.0 {
+                    backward
+                } else if a_req > self.a_plus {
+                    forward
+                } else {
+                    stick
+                }
+            }
+        }
+    }
+
+    fn emit<O: Observer>(&mut self, walk: &Walk, kind: EventKind, observer: &mut O) {
+        self.counters.events.add(&kind);
+        observer.event(&Event {
+            period: walk.period,
+            phase: walk.tau,
+            kind,
+        });
+    }
+
+    /// Hands the open segment `[segment_start, tau]` to the observer and
+    /// opens the next one at `tau`.
+    fn close_segment<O: Observer>(&self, walk: &mut Walk, observer: &mut O) {
+        if walk.tau > walk.segment_start && observer.wants_segments() {
+            let rod_start = self.signal.state(walk.segment_start);
+            let rod_end = self.signal.state_before(walk.tau);
+            let segment = Segment {
+                period: walk.period,
+                start: walk.segment_start,
+                end: walk.tau,
+                mode: walk.mode,
+                slider_start: walk.segment_slider,
+                slider_end: Kinematics {
+                    x: walk.x,
+                    v: walk.v,
+                },
+                rod_start: Kinematics {
+                    x: rod_start.x,
+                    v: rod_start.v,
+                },
+                rod_end: Kinematics {
+                    x: rod_end.x,
+                    v: rod_end.v,
+                },
+                slip_acceleration: match walk.mode {
+                    Mode::Stick => 0.0,
+                    Mode::Slip(Direction::Forward) => self.a_forward,
+                    Mode::Slip(Direction::Backward) => self.a_backward,
+                },
+            };
+            observer.segment(&segment, self.signal);
+        }
+        walk.segment_start = walk.tau;
+        walk.segment_slider = Kinematics {
+            x: walk.x,
+            v: walk.v,
+        };
+    }
+
+    /// A rod jump at the current phase: the slider keeps its velocity, the
+    /// mode follows from the new `v_rel`.
+    fn jump<O: Observer>(&mut self, walk: &mut Walk, before: RodState, observer: &mut O) {
+        self.close_segment(walk, observer);
+        let after = self.signal.state(walk.tau);
+        let mode = self.mode_for(after.v - walk.v, walk.tau);
+        if mode == Mode::Stick {
+            walk.v = after.v;
+            walk.segment_slider.v = after.v;
+        }
+        walk.mode = mode;
+        let kind = EventKind::Jump {
+            dx: after.x - before.x,
+            dv: after.v - before.v,
+            then: mode,
+        };
+        self.emit(walk, kind, observer);
+    }
+
+    fn run_period_impl<O: Observer>(
+        &mut self,
+        period: u64,
+        start: PeriodStart,
+        observer: &mut O,
+    ) -> Result<PeriodEnd, SimulationError> {
+        let rod0 = self.rod_at_start;
+        let jumps = if period == 1 {
+            // From rest: the rod starts at x_R = 0, v_R = 0.
+            rod0.x.abs() > self.tol_v * self.period || rod0.v.abs() > self.tol_v
+        } else {
+            self.jump_at_start
+        };
+        let mut walk = Walk {
+            period,
+            tau: 0.0,
+            x: 0.0,
+            v: start.velocity,
+            mode: Mode::Stick,
+            segment_start: 0.0,
+            segment_slider: Kinematics {
+                x: 0.0,
+                v: start.velocity,
+            },
+        };
+        // The mode at 0+: the previous period's if it simply continues,
+        // else from v_rel (rest within tol_v: from the band of a_R(0+)).
+        let mode = match start.mode {
+            Some(m) if !jumps => m,
+            _ => self.mode_for(rod0.v - walk.v, 0.0),
+        };
+        if mode == Mode::Stick {
+            walk.v = rod0.v;
+            walk.segment_slider.v = rod0.v;
+        }
+        walk.mode = mode;
+        if jumps {
+            let before = if period == 1 {
+                RodState::default()
+            } else {
+                self.rod_at_end
+            };
+            let kind = EventKind::Jump {
+                dx: rod0.x - before.x,
+                dv: rod0.v - before.v,
+                then: mode,
+            };
+            self.emit(&walk, kind, observer);
+        }
+
+        let snap = 1e-6 * self.h;
+        let mut k = 0u64;
+        let mut steps = 0u64;
+        while k < self.steps {
+            let mut next = self.node(k + 1);
+            let mut advance = true;
+            let mut at_jump = false;
+            if let Some(tj) = self.inner_jump
+                && walk.tau < tj
+                && tj < next + snap
+            {
+                at_jump = true;
+                if next - tj > snap {
+                    // Split the step at the jump; the rest follows.
+                    advance = false;
+                }
+                next = tj;
+            }
+            let h = next - walk.tau;
+            let v_rod_end = self.signal.velocity_before(next);
+            let (new_mode, v1) = self.step_law(walk.mode, walk.v, v_rod_end, h);
+            steps += 1;
+            if new_mode != walk.mode {
+                self.close_segment(&mut walk, observer);
+                let kind = transition(walk.mode, new_mode);
+                walk.mode = new_mode;
+                self.emit(&walk, kind, observer);
+            }
+            walk.x += 0.5 * h * (walk.v + v1);
+            walk.v = v1;
+            walk.tau = next;
+            if at_jump {
+                let before = self.signal.state_before(next);
+                self.jump(&mut walk, before, observer);
+            }
+            if advance {
+                k += 1;
+            }
+        }
+        walk.tau = self.period;
+        self.close_segment(&mut walk, observer);
+        self.counters.evaluations += steps;
+        self.counters.periods += 1;
+        let end = PeriodEnd {
+            period,
+            step: walk.x,
+            velocity: walk.v,
+            mode: walk.mode,
+            map_derivative: f64::NAN,
+        };
+        observer.period_end(&end);
+        Ok(end)
+    }
+}
+
+/// The event a change of mode on the grid is.
+fn transition(old: Mode, new: Mode) -> EventKind {
+    match (old, new) {
+        (Mode::Slip(_), Mode::Stick) => EventKind::SlipToStick,
+        (Mode::Stick, Mode::Slip(to)) => EventKind::StickToSlip { to },
+        (_, Mode::Slip(to)) => EventKind::Reversal { to },
+        (Mode::Stick, Mode::Stick) => unreachable!("no mode change"),
+    }
+}
+
+impl PeriodEngine for FixedStepEngine<'_> {
+    fn signal(&self) -> &Signal {
+        self.signal
+    }
+
+    fn run_period<O: Observer>(
+        &mut self,
+        period: u64,
+        start: PeriodStart,
+        observer: &mut O,
+    ) -> Result<PeriodEnd, SimulationError> {
+        self.run_period_impl(period, start, observer)
+    }
+
+    fn counters(&self) -> WorkCounters {
+        self.counters
+    }
+
+    fn zero_velocity_tolerance(&self) -> f64 {
+        self.tol_v
+    }
+}
