@@ -164,6 +164,88 @@ pub enum SceneError {
     },
 }
 
+/// Sweep files, sweep outputs and their merging.
+#[derive(Debug, Error)]
+pub enum SweepError {
+    /// A file could not be read.
+    #[error("cannot read {path}: {source}")]
+    Io {
+        /// The path given.
+        path: String,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// An output file could not be written.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        /// The output path.
+        path: String,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// Not valid TOML, an unknown field, or a value of the wrong type.
+    #[error("invalid sweep {path}: {message}")]
+    Parse {
+        /// The sweep file (or `<string>`).
+        path: String,
+        /// The parser's message.
+        message: String,
+    },
+    /// The base scene could not be loaded.
+    #[error("invalid sweep {path}: base scene: {source}")]
+    Base {
+        /// The sweep file.
+        path: String,
+        /// Why the base scene failed.
+        source: Box<SceneError>,
+    },
+    /// A bad axis value or output setting, named by its sweep field
+    /// (`axes.level[2] = -3: must be positive`).
+    #[error("invalid sweep {path}: {source}")]
+    Param {
+        /// The sweep file.
+        path: String,
+        /// The sweep field and value.
+        source: ParamError,
+    },
+    /// A case whose combination of axis values is not a valid scene.
+    #[error("invalid sweep {path}: case {case} ({values}): {source}")]
+    Case {
+        /// The sweep file.
+        path: String,
+        /// The case index.
+        case: usize,
+        /// The case's axis values, `name = value, ...`.
+        values: String,
+        /// The scene field and value at fault (boxed: keeps [`enum@Error`] small).
+        source: Box<ParamError>,
+    },
+    /// More cases than a sweep may have.
+    #[error("invalid sweep {path}: more than {max} cases")]
+    TooLarge {
+        /// The sweep file.
+        path: String,
+        /// The limit.
+        max: usize,
+    },
+    /// A bad `--shard i/N`.
+    #[error("bad shard \"{given}\": {reason}")]
+    Shard {
+        /// What was given.
+        given: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// An existing output or a merge input that does not fit.
+    #[error("{path}: {reason}")]
+    Output {
+        /// The file.
+        path: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+}
+
 /// Any error of the crate.
 #[derive(Debug, Error)]
 pub enum Error {
@@ -176,4 +258,7 @@ pub enum Error {
     /// A scene that could not be loaded.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// A sweep that could not be loaded, run or written.
+    #[error(transparent)]
+    Sweep(#[from] SweepError),
 }

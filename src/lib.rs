@@ -18,16 +18,20 @@
 //!    [`power`] adds the electrical input power (section 6.3);
 //! 5. [`report`] prints text or JSON.
 
+pub mod check;
 pub mod engine;
 pub mod error;
 pub mod indicators;
 pub mod motor;
 pub mod observer;
+pub mod plot;
 pub mod power;
 pub mod report;
 pub mod scene;
 pub mod signal;
 pub mod simulation;
+pub mod stability;
+pub mod sweep;
 
 pub use error::{Error, ParamError, SceneError, SimulationError};
 pub use motor::{Motor, MotorParams};

@@ -29,6 +29,49 @@ enum Command {
     },
     /// Print the built-in default scene as TOML.
     DefaultScene,
+    /// Cross-check a scene: the event engine against the fixed-step
+    /// reference at several resolutions, indicator by indicator.
+    Check {
+        /// Scene file (TOML); omitted: the built-in default scene.
+        scene: Option<PathBuf>,
+        /// Resolutions: steps per period of the highest harmonic, comma separated.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            value_parser = clap::value_parser!(u32).range(1..),
+            default_values_t = stickslip::check::DEFAULT_STEPS
+        )]
+        steps: Vec<u32>,
+    },
+    /// Run a sweep file's grid in parallel, one CSV or JSON-lines row per case.
+    Sweep {
+        /// Sweep file (TOML).
+        file: PathBuf,
+        /// Output file; rows already in it are kept and not rerun. Default:
+        /// <sweep name>.csv (or .jsonl), <sweep name>.<i>-of-<N>.csv for a shard.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Run only shard i of N (i from 1): the cases with index % N == i - 1.
+        #[arg(long, value_name = "i/N")]
+        shard: Option<stickslip::sweep::Shard>,
+        /// Leave out the wall_time_s column: the same sweep then writes the same bytes.
+        #[arg(long)]
+        no_timing: bool,
+        /// No progress bar.
+        #[arg(short, long)]
+        quiet: bool,
+        /// Worker threads (default: every available CPU).
+        #[arg(short, long)]
+        jobs: Option<usize>,
+    },
+    /// Join sweep outputs (shards) into one file, sorted by case.
+    Merge {
+        /// The merged file (written atomically).
+        output: PathBuf,
+        /// Sweep outputs with the same columns.
+        #[arg(required = true)]
+        inputs: Vec<PathBuf>,
+    },
 }
 
 fn load(path: Option<&PathBuf>) -> Result<Scene, String> {
@@ -51,6 +94,69 @@ fn run(scene: Option<PathBuf>, json: bool) -> Result<(), String> {
     Ok(())
 }
 
+fn sweep(
+    file: PathBuf,
+    output: Option<PathBuf>,
+    shard: Option<stickslip::sweep::Shard>,
+    timing: bool,
+    progress: bool,
+    jobs: Option<usize>,
+) -> Result<(), String> {
+    use stickslip::sweep;
+    if let Some(jobs) = jobs {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(jobs)
+            .build_global()
+            .map_err(|e| e.to_string())?;
+    }
+    let sweep = sweep::load(&file).map_err(|e| e.to_string())?;
+    let output = output.unwrap_or_else(|| sweep.default_output(shard));
+    let options = sweep::Options {
+        shard,
+        timing,
+        progress,
+        ..sweep::Options::new(&output)
+    };
+    let s = sweep::execute(&sweep, &options).map_err(|e| e.to_string())?;
+    eprintln!(
+        "stickslip: {} cases{}: {} already written, {} run, {} failed; {} rows in {}",
+        s.cases,
+        shard.map_or(String::new(), |sh| format!(
+            " in shard {sh} (of {})",
+            sweep.len()
+        )),
+        s.skipped,
+        s.ran,
+        s.failed,
+        s.rows,
+        output.display()
+    );
+    if s.failed > 0 {
+        eprintln!("stickslip: warning: see the failure column for why cases failed");
+    }
+    Ok(())
+}
+
+fn check(scene: Option<PathBuf>, steps: &[u32]) -> Result<(), String> {
+    let scene = load(scene.as_ref())?;
+    let report = stickslip::check::check(&scene, steps).map_err(|e| e.to_string())?;
+    print!("{}", report.to_text());
+    Ok(())
+}
+
+fn merge(output: PathBuf, inputs: Vec<PathBuf>) -> Result<(), String> {
+    let s = stickslip::sweep::merge(&output, &inputs).map_err(|e| e.to_string())?;
+    eprintln!("stickslip: {} rows in {}", s.rows, output.display());
+    if !s.missing.is_empty() {
+        eprintln!(
+            "stickslip: warning: {} cases missing below the last one: {:?}",
+            s.missing.len(),
+            s.missing
+        );
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
@@ -60,6 +166,16 @@ fn main() -> ExitCode {
             print!("{}", Scene::default().to_toml());
             Ok(())
         }
+        Some(Command::Sweep {
+            file,
+            output,
+            shard,
+            no_timing,
+            quiet,
+            jobs,
+        }) => sweep(file, output, shard, !no_timing, !quiet, jobs),
+        Some(Command::Merge { output, inputs }) => merge(output, inputs),
+        Some(Command::Check { scene, steps }) => check(scene, &steps),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

@@ -163,7 +163,14 @@ pub fn run_with<E: PeriodEngine>(
     let stiction_fraction_transient = wanted
         .stiction
         .then(|| transient.stick_time / (transient.periods() as f64 * period));
-    let mut error = estimate_errors(&signal, &steady, &transient, &indicators, startup_periods);
+    let mut error = estimate_errors(
+        &signal,
+        &steady,
+        &transient,
+        &indicators,
+        startup_periods,
+        motor.contact_force(),
+    );
     if let Some(p) = &power {
         // S (35) is a closed form of the signal: only v_inf carries error.
         error.velocity_per_power = error.v_inf.map(|dv| dv / p.apparent_power);
@@ -204,6 +211,7 @@ fn estimate_errors(
     transient: &Transient,
     ind: &SteadyIndicators,
     startup_periods: Option<u64>,
+    contact_force: f64,
 ) -> ErrorEstimate {
     let period = signal.period();
     let v_scale = signal.velocity_scale();
@@ -223,7 +231,10 @@ fn estimate_errors(
                 + rounding_x / period
         }
     };
-    let rel = dv / ind.v_inf.abs() + 16.0 * f64::EPSILON * segments;
+    // Relative rounding of a sum over the period's segments.
+    let rounding_rel = 16.0 * f64::EPSILON * segments;
+    let spread = steady.stats.v_max - steady.stats.v_min;
+    let sliding = steady.stats.sliding_distance;
     let startup = startup_periods.map(|p| {
         let threshold = 0.99 * steady.v_inf;
         let near = transient
@@ -236,13 +247,19 @@ fn estimate_errors(
     ErrorEstimate {
         v_inf: Some(dv),
         startup_time: startup,
-        smoothness: ind.smoothness.is_finite().then_some(ind.smoothness * rel),
+        // zeta = |v_inf| / spread: the v_inf error over the spread, plus
+        // rounding of the spread.
+        smoothness: ind
+            .smoothness
+            .is_finite()
+            .then(|| dv / spread + ind.smoothness * rounding_rel),
+        // delta = x_p / (F_c s) with x_p = v_inf T.
         durability: ind
             .durability
             .is_finite()
-            .then_some(ind.durability.abs() * rel),
-        friction_energy: Some(ind.friction_energy * 16.0 * f64::EPSILON * segments),
-        stiction_fraction: Some(16.0 * f64::EPSILON * segments),
+            .then(|| dv * period / (contact_force * sliding) + ind.durability.abs() * rounding_rel),
+        friction_energy: Some(ind.friction_energy * rounding_rel),
+        stiction_fraction: Some(rounding_rel),
         velocity_per_power: None,
     }
 }

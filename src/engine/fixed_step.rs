@@ -133,6 +133,7 @@ pub struct FixedStepEngine<'s> {
     tol_v: f64,
     rod_at_start: RodState,
     rod_at_end: RodState,
+    last_uncertainty: f64,
     counters: WorkCounters,
 }
 
@@ -146,7 +147,11 @@ struct Walk {
     /// Slider velocity (m/s).
     v: f64,
     mode: Mode,
-    /// The open segment: start phase, mode, slider and rod at its start.
+    /// Derivative of the scheme's own period map: 0 once the slider stuck.
+    derivative: f64,
+    /// Velocity error the grid introduced in this period (m/s).
+    uncertainty: f64,
+    /// The open segment: its start phase and the slider there.
     segment_start: f64,
     segment_slider: Kinematics,
 }
@@ -163,11 +168,7 @@ impl<'s> FixedStepEngine<'s> {
             "steps_per_harmonic must be at least 1"
         );
         let period = signal.period();
-        let harmonics = match signal {
-            Signal::Fourier(s) => s.degree().max(1) as u64,
-            Signal::Ideal(_) => 1,
-        };
-        let steps = harmonics * u64::from(options.steps_per_harmonic);
+        let steps = Self::steps_for(signal, options.steps_per_harmonic);
         let v_scale = signal.velocity_scale().max(f64::MIN_POSITIVE);
         let jump = signal.jump_phase();
         Self {
@@ -184,8 +185,19 @@ impl<'s> FixedStepEngine<'s> {
             tol_v: options.velocity_tolerance * v_scale,
             rod_at_start: signal.state(0.0),
             rod_at_end: signal.state_before(period),
+            last_uncertainty: 0.0,
             counters: WorkCounters::default(),
         }
+    }
+
+    /// Steps per period `N = n x steps_per_harmonic` for a signal with `n`
+    /// harmonics (`n = 1` for the ideal signal).
+    pub fn steps_for(signal: &Signal, steps_per_harmonic: u32) -> u64 {
+        let harmonics = match signal {
+            Signal::Fourier(s) => s.degree().max(1) as u64,
+            Signal::Ideal(_) => 1,
+        };
+        harmonics * u64::from(steps_per_harmonic)
     }
 
     /// Steps per period `N = n x steps_per_harmonic`.
@@ -234,14 +246,19 @@ impl<'s> FixedStepEngine<'s> {
     #[inline]
     fn step_law(&self, mode: Mode, v: f64, v_rod_end: f64, h: f64) -> (Mode, f64) {
         let a_req = (v_rod_end - v) / h;
+        // a_req is a difference quotient of velocities: within tol_v / h of
+        // the band it counts as inside (a_R = a_0 exactly, as in the ideal
+        // signal at kappa = 1, must not slip on rounding).
+        let tol_a = self.tol_v / h;
+        let (a_plus, a_minus) = (self.a_plus + tol_a, self.a_minus - tol_a);
         let forward = (Mode::Slip(Direction::Forward), v + h * self.a_forward);
         let backward = (Mode::Slip(Direction::Backward), v + h * self.a_backward);
         let stick = (Mode::Stick, v_rod_end);
         match mode {
             Mode::Stick => {
-                if a_req > self.a_plus {
+                if a_req > a_plus {
                     forward
-                } else if a_req < self.a_minus {
+                } else if a_req < a_minus {
                     backward
                 } else {
                     stick
@@ -250,7 +267,7 @@ impl<'s> FixedStepEngine<'s> {
             Mode::Slip(Direction::Forward) => {
                 if v_rod_end - forward.1 > 0.0 {
                     forward
-                } else if a_req < self.a_minus {
+                } else if a_req < a_minus {
                     backward
                 } else {
                     stick
@@ -259,12 +276,29 @@ impl<'s> FixedStepEngine<'s> {
             Mode::Slip(Direction::Backward) => {
                 if v_rod_end - backward.1 < 0.0 {
                     backward
-                } else if a_req > self.a_plus {
+                } else if a_req > a_plus {
                     forward
                 } else {
                     stick
                 }
             }
+        }
+    }
+
+    /// `|Delta a|` of a mode change on a step: how far the slider's true
+    /// acceleration over the step may differ from the one the scheme gave
+    /// the whole step. A stuck slider follows `a_R`, whose mean over the step
+    /// is `a_req`; a step that ends in stick ends exactly on the rod
+    /// velocity, so it adds no velocity error.
+    fn acceleration_jump(&self, old: Mode, new: Mode, v: f64, v_rod_end: f64, h: f64) -> f64 {
+        let slip = |d: Direction| match d {
+            Direction::Forward => self.a_forward,
+            Direction::Backward => self.a_backward,
+        };
+        match (old, new) {
+            (_, Mode::Stick) => 0.0,
+            (Mode::Stick, Mode::Slip(d)) => (slip(d) - (v_rod_end - v) / h).abs(),
+            (Mode::Slip(a), Mode::Slip(b)) => (slip(b) - slip(a)).abs(),
         }
     }
 
@@ -325,6 +359,7 @@ impl<'s> FixedStepEngine<'s> {
         if mode == Mode::Stick {
             walk.v = after.v;
             walk.segment_slider.v = after.v;
+            walk.derivative = 0.0;
         }
         walk.mode = mode;
         let kind = EventKind::Jump {
@@ -354,6 +389,8 @@ impl<'s> FixedStepEngine<'s> {
             x: 0.0,
             v: start.velocity,
             mode: Mode::Stick,
+            derivative: 1.0,
+            uncertainty: 0.0,
             segment_start: 0.0,
             segment_slider: Kinematics {
                 x: 0.0,
@@ -369,6 +406,7 @@ impl<'s> FixedStepEngine<'s> {
         if mode == Mode::Stick {
             walk.v = rod0.v;
             walk.segment_slider.v = rod0.v;
+            walk.derivative = 0.0;
         }
         walk.mode = mode;
         if jumps {
@@ -408,6 +446,11 @@ impl<'s> FixedStepEngine<'s> {
             let (new_mode, v1) = self.step_law(walk.mode, walk.v, v_rod_end, h);
             steps += 1;
             if new_mode != walk.mode {
+                walk.uncertainty +=
+                    h * self.acceleration_jump(walk.mode, new_mode, walk.v, v_rod_end, h);
+                if new_mode == Mode::Stick {
+                    walk.derivative = 0.0;
+                }
                 self.close_segment(&mut walk, observer);
                 let kind = transition(walk.mode, new_mode);
                 walk.mode = new_mode;
@@ -428,12 +471,13 @@ impl<'s> FixedStepEngine<'s> {
         self.close_segment(&mut walk, observer);
         self.counters.evaluations += steps;
         self.counters.periods += 1;
+        self.last_uncertainty = walk.uncertainty;
         let end = PeriodEnd {
             period,
             step: walk.x,
             velocity: walk.v,
             mode: walk.mode,
-            map_derivative: f64::NAN,
+            map_derivative: walk.derivative,
         };
         observer.period_end(&end);
         Ok(end)
@@ -470,5 +514,11 @@ impl PeriodEngine for FixedStepEngine<'_> {
 
     fn zero_velocity_tolerance(&self) -> f64 {
         self.tol_v
+    }
+
+    /// The velocity error the grid introduced in the last period, `sum h
+    /// |Delta a|` over its mode changes (see [`FixedStepEngine`]).
+    fn last_velocity_uncertainty(&self) -> Option<f64> {
+        Some(self.last_uncertainty)
     }
 }

@@ -46,6 +46,7 @@ pub mod velocity;
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -240,10 +241,10 @@ pub(crate) fn font(size: f64) -> TextStyle<'static> {
     ("sans-serif", size).into_font().color(&BLACK)
 }
 
-/// Estimated width in pixels of `text` at plotters size `size`: 0.62 em per
+/// Estimated width in pixels of `text` at plotters size `size`: 0.58 em per
 /// character of the rendered font, generous for DejaVu Sans and Arial.
 pub(crate) fn text_width(text: &str, size: f64) -> i32 {
-    (text.chars().count() as f64 * 0.62 * size / 1.24).ceil() as i32
+    (text.chars().count() as f64 * 0.58 * size / 1.24).ceil() as i32
 }
 
 /// Line height in pixels for plotters size `size`.
@@ -280,7 +281,10 @@ pub(crate) fn render(
 
 /// Splits a title strip of the figure title's height off the top of `area`
 /// and writes `title` centred in it; returns the rest.
-pub(crate) fn titled<'a>(area: &Area<'a>, title: &str) -> Result<Area<'a>, DrawingAreaErrorKind<std::io::Error>> {
+pub(crate) fn titled<'a>(
+    area: &Area<'a>,
+    title: &str,
+) -> Result<Area<'a>, DrawingAreaErrorKind<std::io::Error>> {
     let h = line_height(size::TITLE) + 10;
     let (top, rest) = area.split_vertically(h);
     let (w, _) = top.dim_in_pixel();
@@ -305,6 +309,8 @@ pub(crate) enum Mark {
     LinePoints(u32),
     /// A line with hollow squares at each point.
     LineSquares(u32),
+    /// Filled circles of the given radius, no line.
+    Points(u32),
     /// Filled rectangles: consecutive point pairs are opposite corners.
     Rects,
 }
@@ -325,7 +331,12 @@ pub(crate) struct Series {
 
 impl Series {
     /// A connected curve.
-    pub(crate) fn line(label: Option<&str>, points: Vec<(f64, f64)>, color: RGBColor, mark: Mark) -> Self {
+    pub(crate) fn line(
+        label: Option<&str>,
+        points: Vec<(f64, f64)>,
+        color: RGBColor,
+        mark: Mark,
+    ) -> Self {
         Series {
             label: label.map(str::to_owned),
             pieces: vec![points],
@@ -335,13 +346,19 @@ impl Series {
     }
 
     /// A horizontal line at `y` across `x0..x1`.
-    pub(crate) fn hline(label: Option<&str>, y: f64, (x0, x1): (f64, f64), color: RGBColor, mark: Mark) -> Self {
+    pub(crate) fn hline(
+        label: Option<&str>,
+        y: f64,
+        (x0, x1): (f64, f64),
+        color: RGBColor,
+        mark: Mark,
+    ) -> Self {
         Self::line(label, vec![(x0, y), (x1, y)], color, mark)
     }
 }
 
 /// A text label placed in data coordinates.
-#[derive(Debug, Clone)]
+#[derive(Clone)]
 pub(crate) struct Note {
     /// Anchor point (data coordinates).
     pub at: (f64, f64),
@@ -403,7 +420,7 @@ impl Axis {
 }
 
 /// A panel: axes, series, notes and an optional title.
-#[derive(Debug, Clone)]
+#[derive(Clone)]
 pub(crate) struct Panel {
     /// Title above the plotting area.
     pub title: Option<String>,
@@ -458,11 +475,17 @@ pub(crate) fn tick_label(v: f64) -> String {
 }
 
 /// Tick labels of a logarithmic axis: powers of ten only (plotters also
-/// offers 2 and 5 times them, which crowd the axis).
-fn log_tick_label(v: f64) -> String {
+/// offers 2 and 5 times them, which crowd the axis), written plainly when
+/// the whole axis lies in `[0.01, 10000]`.
+fn log_tick_label(v: f64, (lo, hi): (f64, f64)) -> String {
     let e = v.abs().log10();
     if (e - e.round()).abs() < 1e-9 {
-        format!("10{}", superscript(e.round() as i32))
+        let e = e.round() as i32;
+        if lo >= 0.999e-2 && hi <= 1.001e4 {
+            tick_label(10f64.powi(e))
+        } else {
+            format!("10{}", superscript(e))
+        }
     } else {
         String::new()
     }
@@ -490,7 +513,11 @@ fn superscript(e: i32) -> String {
 /// The parts of `points` inside the box `x` x `y`, as polylines: each
 /// segment is clipped (Liang-Barsky) and runs of connected clipped segments
 /// are joined.
-pub(crate) fn clip_polyline(points: &[(f64, f64)], x: (f64, f64), y: (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+pub(crate) fn clip_polyline(
+    points: &[(f64, f64)],
+    x: (f64, f64),
+    y: (f64, f64),
+) -> Vec<Vec<(f64, f64)>> {
     let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
     let mut open = false;
     for w in points.windows(2) {
@@ -527,7 +554,12 @@ fn clip_segment(
     let (dx, dy) = (q.0 - p.0, q.1 - p.1);
     let mut t0: f64 = 0.0;
     let mut t1: f64 = 1.0;
-    for (den, num) in [(-dx, p.0 - x0), (dx, x1 - p.0), (-dy, p.1 - y0), (dy, y1 - p.1)] {
+    for (den, num) in [
+        (-dx, p.0 - x0),
+        (dx, x1 - p.0),
+        (-dy, p.1 - y0),
+        (dy, y1 - p.1),
+    ] {
         if den == 0.0 {
             if num < 0.0 {
                 return None;
@@ -586,18 +618,21 @@ where
         builder.caption(title, font(size::PANEL));
     }
     let mut chart = builder.build_cartesian_2d(x_spec, y_spec)?;
+    // Ticks are multiples of a round step computed in floating point: snap
+    // a tick that should be 0 (1e-17 and the like) to 0.
+    let snap = |v: f64, (lo, hi): (f64, f64)| if v.abs() < 1e-9 * (hi - lo) { 0.0 } else { v };
     let x_fmt = |v: &f64| {
         if panel.x.log {
-            log_tick_label(*v)
+            log_tick_label(*v, panel.x.range)
         } else {
-            tick_label(*v)
+            tick_label(snap(*v, panel.x.range))
         }
     };
     let y_fmt = |v: &f64| {
         if panel.y.log {
-            log_tick_label(*v)
+            log_tick_label(*v, panel.y.range)
         } else {
-            tick_label(*v)
+            tick_label(snap(*v, panel.y.range))
         }
     };
     chart
@@ -628,6 +663,7 @@ where
                         Rectangle::new([clamp(c[0]), clamp(c[1])], style)
                     }))?;
                 }
+                Mark::Points(_) => {}
                 Mark::Line(w) | Mark::LinePoints(w) | Mark::LineSquares(w) => {
                     for part in clip_polyline(&scaled, xr, yr) {
                         chart.draw_series(LineSeries::new(part, s.color.stroke_width(w)))?;
@@ -648,7 +684,18 @@ where
             match s.mark {
                 Mark::LinePoints(_) => {
                     chart.draw_series(
-                        scaled.iter().filter(inside).map(|p| Circle::new(*p, 4, s.color.filled())),
+                        scaled
+                            .iter()
+                            .filter(inside)
+                            .map(|p| Circle::new(*p, 4, s.color.filled())),
+                    )?;
+                }
+                Mark::Points(r) => {
+                    chart.draw_series(
+                        scaled
+                            .iter()
+                            .filter(inside)
+                            .map(|p| Circle::new(*p, r, s.color.filled())),
                     )?;
                 }
                 Mark::LineSquares(_) => {
@@ -773,16 +820,26 @@ pub(crate) fn draw_legend(area: &Area<'_>, entries: &[LegendEntry]) -> DrawResul
         let mut x = (w as i32 - total) / 2;
         let y = 5 + r as i32 * lh + lh / 2;
         for e in &entries[row] {
-            draw_swatch(area, e, (x, y))?;
-            area.draw_text(
-                &e.label,
-                &font(size::LEGEND).pos(Pos::new(HPos::Left, VPos::Center)),
-                (x + SWATCH + 8, y),
-            )?;
+            draw_legend_entry(area, e, (x, y))?;
             x += entry_width(e) + ENTRY_GAP;
         }
     }
     Ok(())
+}
+
+/// Draws one legend entry with its swatch's left end at `(x, y)` (pixels,
+/// `y` the text's middle).
+pub(crate) fn draw_legend_entry(
+    area: &Area<'_>,
+    e: &LegendEntry,
+    (x, y): (i32, i32),
+) -> DrawResult {
+    draw_swatch(area, e, (x, y))?;
+    area.draw_text(
+        &e.label,
+        &font(size::LEGEND).pos(Pos::new(HPos::Left, VPos::Center)),
+        (x + SWATCH + 8, y),
+    )
 }
 
 fn draw_swatch(area: &Area<'_>, e: &LegendEntry, (x, y): (i32, i32)) -> DrawResult {
@@ -806,12 +863,16 @@ fn draw_swatch(area: &Area<'_>, e: &LegendEntry, (x, y): (i32, i32)) -> DrawResu
         Mark::LineSquares(w) => {
             area.draw(&line(w.max(2)))?;
             let c = (x + SWATCH / 2, y);
-            area.draw(&Rectangle::new([(c.0 - 4, c.1 - 4), (c.0 + 4, c.1 + 4)], WHITE.filled()))?;
+            area.draw(&Rectangle::new(
+                [(c.0 - 4, c.1 - 4), (c.0 + 4, c.1 + 4)],
+                WHITE.filled(),
+            ))?;
             area.draw(&Rectangle::new(
                 [(c.0 - 4, c.1 - 4), (c.0 + 4, c.1 + 4)],
                 e.color.stroke_width(2),
             ))
         }
+        Mark::Points(r) => area.draw(&Circle::new((x + SWATCH / 2, y), r, e.color.filled())),
         Mark::Rects => area.draw(&Rectangle::new(
             [(x + 4, y - 7), (x + SWATCH - 4, y + 7)],
             e.color.filled(),
@@ -823,9 +884,9 @@ fn draw_swatch(area: &Area<'_>, e: &LegendEntry, (x, y): (i32, i32)) -> DrawResu
 /// law `y ∝ x^s`).
 pub(crate) fn loglog_slope(points: &[(f64, f64)]) -> f64 {
     let n = points.len() as f64;
-    let (mx, my) = points
-        .iter()
-        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x.ln() / n, b + y.ln() / n));
+    let (mx, my) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
+        (a + x.ln() / n, b + y.ln() / n)
+    });
     let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
         let dx = x.ln() - mx;
         (a + dx * (y.ln() - my), b + dx * dx)
@@ -849,7 +910,9 @@ pub(crate) fn padded(lo: f64, hi: f64, frac: f64) -> (f64, f64) {
 pub(crate) fn min_max(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
     values
         .into_iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        })
 }
 
 #[cfg(test)]
@@ -867,7 +930,10 @@ mod tests {
 
     #[test]
     fn slope_of_a_power_law() {
-        let pts: Vec<(f64, f64)> = [1e-9, 1e-6, 1e-3].iter().map(|x: &f64| (*x, 3.0 * x.sqrt())).collect();
+        let pts: Vec<(f64, f64)> = [1e-9, 1e-6, 1e-3]
+            .iter()
+            .map(|x: &f64| (*x, 3.0 * x.sqrt()))
+            .collect();
         assert!((loglog_slope(&pts) - 0.5).abs() < 1e-12);
     }
 
@@ -877,7 +943,8 @@ mod tests {
         assert_eq!(tick_label(-3.0), "−3");
         assert_eq!(tick_label(1e-6), "10⁻⁶");
         assert_eq!(tick_label(2.5e6), "2.5×10⁶");
-        assert_eq!(log_tick_label(1e-3), "10⁻³");
-        assert_eq!(log_tick_label(2e-3), "");
+        assert_eq!(log_tick_label(1e-3, (1e-9, 1e-3)), "10⁻³");
+        assert_eq!(log_tick_label(100.0, (1.0, 1e3)), "100");
+        assert_eq!(log_tick_label(2e-3, (1e-9, 1e-3)), "");
     }
 }

@@ -18,13 +18,15 @@
 
 use super::IdealShape;
 use super::RodState;
+use crate::engine::bracket;
 use crate::engine::trig_roots::TrigPoly;
 use crate::error::ParamError;
 use crate::motor::Motor;
 use std::f64::consts::PI;
+use std::sync::OnceLock;
 
 /// A finite harmonic series with period `T`.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct FourierSignal {
     period: f64,
     omega: f64,
@@ -37,6 +39,18 @@ pub struct FourierSignal {
     /// `k^2 w^2 B_k` (acceleration) for the hot path.
     vel: Vec<(f64, f64)>,
     acc: Vec<(f64, f64)>,
+    /// Smallest and largest `v_R` over a period, found once on demand.
+    velocity_range: OnceLock<(f64, f64)>,
+}
+
+impl PartialEq for FourierSignal {
+    /// Equal series: same period and coefficients.
+    fn eq(&self, other: &Self) -> bool {
+        self.period == other.period
+            && self.c0 == other.c0
+            && self.cos == other.cos
+            && self.sin == other.sin
+    }
 }
 
 /// Extrema of `x_R` over a period.
@@ -109,7 +123,23 @@ impl FourierSignal {
             sin,
             vel,
             acc,
+            velocity_range: OnceLock::new(),
         }
+    }
+
+    /// Smallest and largest rod velocity over a period, exact: the values at
+    /// the roots of `a_R` (computed once and kept).
+    pub fn velocity_range(&self) -> (f64, f64) {
+        *self.velocity_range.get_or_init(|| {
+            let mut lo = self.velocity(0.0);
+            let mut hi = lo;
+            for root in self.acceleration_poly().roots() {
+                let v = self.velocity(root / self.omega);
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+            (lo, hi)
+        })
     }
 
     /// The first `n` harmonics of the ideal signal of `shape`, with sigma
@@ -270,6 +300,68 @@ impl FourierSignal {
             self.acc.iter().map(|(a, _)| -a).collect(),
             self.acc.iter().map(|(_, b)| -b).collect(),
         )
+    }
+
+    /// The median of `v_R` over a period: the velocity `m` that the rod
+    /// exceeds for exactly half of the period (MODEL.md section 7: the
+    /// limit of `v_inf` for very high `kappa`). Bisection on `m`; the time
+    /// above `m` is measured exactly on the monotone pieces of `v_R`
+    /// between the roots of `a_R`, one bracketed root per piece.
+    pub fn velocity_median(&self) -> f64 {
+        let mut knots = vec![0.0];
+        knots.extend(
+            self.acceleration_poly()
+                .roots()
+                .into_iter()
+                .map(|r| r / self.omega),
+        );
+        knots.push(self.period);
+        let tol = 4.0 * f64::EPSILON * self.period;
+        let time_above = |m: f64| -> f64 {
+            knots
+                .windows(2)
+                .map(|w| {
+                    let (s, e) = (w[0], w[1]);
+                    let (vs, ve) = (self.velocity(s) - m, self.velocity(e) - m);
+                    if vs > 0.0 && ve > 0.0 {
+                        e - s
+                    } else if vs <= 0.0 && ve <= 0.0 {
+                        0.0
+                    } else {
+                        let root = bracket::solve(
+                            |t| (self.velocity(t) - m, self.acceleration(t)),
+                            (s, e),
+                            (vs, ve),
+                            tol,
+                            0.0,
+                            None,
+                        );
+                        if vs > 0.0 { root.t - s } else { e - root.t }
+                    }
+                })
+                .sum()
+        };
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &k in &knots {
+            let v = self.velocity(k);
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+        if lo >= hi {
+            return lo;
+        }
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if time_above(mid) > 0.5 * self.period {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
     }
 
     /// `v_R(theta) / w_0` as a trigonometric polynomial in `theta`.

@@ -444,18 +444,15 @@ impl Signal {
     }
 
     /// Smallest and largest rod velocity over a period, exact (from the
-    /// roots of `a_R`).
+    /// roots of `a_R`; for the ideal signal `0` and `a_R t_1`).
     pub fn velocity_range(&self) -> (f64, f64) {
-        let part = self.partition(0.0);
-        let mut lo = f64::INFINITY;
-        let mut hi = f64::NEG_INFINITY;
-        for piece in &part.pieces {
-            for v in [self.state(piece.start).v, self.state_before(piece.end).v] {
-                lo = lo.min(v);
-                hi = hi.max(v);
+        match self {
+            Signal::Ideal(s) => {
+                let v = s.a_r() * s.t1();
+                (v.min(0.0), v.max(0.0))
             }
+            Signal::Fourier(s) => s.velocity_range(),
         }
-        (lo, hi)
     }
 
     /// Largest magnitude of the rod velocity over a period.

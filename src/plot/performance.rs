@@ -1,0 +1,361 @@
+//! Figures 6 and 7: the indicators of the paper's section 7 against the
+//! number of harmonics `n` at equal maximum frequencies
+//! `f_max = n sqrt(kappa) sqrt(a_0 / (2 x_Rmax))` (37), without (figure 6)
+//! and with (figure 7) sigma factors (15).
+//!
+//! Each curve is one level `L = n sqrt(kappa)` (so `sqrt(kappa) = L / n`);
+//! the panels show the steady-state velocity `v_inf`, the start-up time
+//! `T p_0.99`, the smoothness `zeta_inf` (16), the velocity to input power
+//! ratio `v_inf / S` (35) and the durability `delta_inf` (18). Both figures
+//! share their y ranges, so that the effect of the sigma factors reads off
+//! directly. The grid itself is run by the caller (the example uses
+//! `examples/sweeps/section7.toml` and [`crate::sweep`]); this module only
+//! draws [`GridPoint`]s.
+
+use super::{
+    Area, Axis, Cell, Csv, DrawResult, Figure, LegendEntry, Mark, PALETTE, Panel, PlotError,
+    REFERENCE, Series, draw_panel, font, line_height, render, size, text_width, titled,
+};
+use crate::simulation::RunReport;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+/// The ideal stick-slip maximum velocity of the paper's motor, from Part I
+/// (m/s), drawn as a reference in the `v_inf` panels.
+pub const IDEAL_STICK_SLIP_MAX: f64 = 0.06;
+
+/// One case of the section-7 grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GridPoint {
+    /// Level `L = n sqrt(kappa)`.
+    pub level: f64,
+    /// Number of harmonics `n`.
+    pub n: usize,
+    /// Lanczos sigma factors (15).
+    pub sigma: bool,
+    /// Highest frequency `f_max = n f_0` (Hz).
+    pub f_max: f64,
+    /// Period `T` (s).
+    pub period: f64,
+    /// `v_inf` (m/s).
+    pub v_inf: f64,
+    /// `p_0.99`, if the start-up was reached.
+    pub startup_periods: Option<u64>,
+    /// Smoothness `zeta_inf` (16).
+    pub smoothness: f64,
+    /// Durability `delta_inf` (18) (1/N).
+    pub durability: f64,
+    /// Time in stick / simulated start-up time.
+    pub stiction_fraction: f64,
+    /// `v_inf / S` (m/(s VA)), if an actuator was given.
+    pub velocity_per_power: Option<f64>,
+}
+
+impl GridPoint {
+    /// The point of a run of the level-`level` case with `n` harmonics.
+    pub fn from_report(level: f64, n: usize, sigma: bool, report: &RunReport) -> Self {
+        GridPoint {
+            level,
+            n,
+            sigma,
+            f_max: report.f_max.unwrap_or(f64::NAN),
+            period: report.period,
+            v_inf: report.indicators.v_inf,
+            startup_periods: report.startup_periods,
+            smoothness: report.indicators.smoothness,
+            durability: report.indicators.durability,
+            stiction_fraction: report.stiction_fraction_transient.unwrap_or(f64::NAN),
+            velocity_per_power: report.velocity_per_power(),
+        }
+    }
+
+    /// Start-up time `T p_0.99` (s).
+    pub fn startup_time(&self) -> Option<f64> {
+        self.startup_periods.map(|p| p as f64 * self.period)
+    }
+}
+
+/// One indicator panel: title, axis label, how to read the value, the
+/// drawing scale.
+struct Indicator {
+    title: &'static str,
+    label: &'static str,
+    value: fn(&GridPoint) -> Option<f64>,
+    scale: f64,
+}
+
+const INDICATORS: [Indicator; 5] = [
+    Indicator {
+        title: "(a) steady-state velocity",
+        label: "v∞ (m/s)",
+        value: |p| Some(p.v_inf),
+        scale: 1.0,
+    },
+    Indicator {
+        title: "(b) start-up time",
+        label: "T·p₀.₉₉ (ms)",
+        value: GridPoint::startup_time,
+        scale: 1e3,
+    },
+    Indicator {
+        title: "(c) smoothness",
+        label: "ζ∞ (–)",
+        value: |p| Some(p.smoothness),
+        scale: 1.0,
+    },
+    Indicator {
+        title: "(d) velocity to input power ratio",
+        label: "v∞ / S (mm s⁻¹ VA⁻¹)",
+        value: |p| p.velocity_per_power,
+        scale: 1e3,
+    },
+    Indicator {
+        title: "(e) durability",
+        label: "δ∞ (N⁻¹)",
+        value: |p| Some(p.durability),
+        scale: 1.0,
+    },
+];
+
+/// Levels in the grid, ascending.
+fn levels(points: &[GridPoint]) -> Vec<f64> {
+    let mut l: Vec<f64> = points.iter().map(|p| p.level).collect();
+    l.sort_by(f64::total_cmp);
+    l.dedup();
+    l
+}
+
+/// A round upper limit for an axis from 0 that holds `max` with a margin.
+fn nice_top(max: f64) -> f64 {
+    let raw = max * 1.06;
+    let mag = 10f64.powf(raw.log10().floor());
+    let steps = [1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0];
+    steps
+        .iter()
+        .map(|s| s * mag)
+        .find(|v| *v >= raw)
+        .unwrap_or(10.0 * mag)
+}
+
+/// Figures 6 (without sigma) and 7 (with sigma) from the grid points,
+/// which must hold both sigma settings.
+pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
+    let levels = levels(points);
+    let (n_lo, n_hi) = points
+        .iter()
+        .fold((usize::MAX, 0), |(lo, hi), p| (lo.min(p.n), hi.max(p.n)));
+    if levels.is_empty() || !points.iter().any(|p| p.sigma) || !points.iter().any(|p| !p.sigma) {
+        return Err(PlotError::Data {
+            figure: "fig6/fig7".to_owned(),
+            reason: "the grid needs points with and without sigma factors".to_owned(),
+        });
+    }
+    // Shared y ranges: from 0 to a round value above the largest of both.
+    let tops: Vec<f64> = INDICATORS
+        .iter()
+        .map(|ind| {
+            let max = points
+                .iter()
+                .filter_map(|p| (ind.value)(p))
+                .filter(|v| v.is_finite())
+                .fold(0.0, f64::max);
+            nice_top(max * ind.scale)
+        })
+        .collect();
+    let make = |sigma: bool| -> Result<Figure, PlotError> {
+        let name = if sigma {
+            "fig7_indicators_with_sigma"
+        } else {
+            "fig6_indicators_without_sigma"
+        };
+        let mut csv = Csv::new(
+            &[
+                &format!(
+                    "Figure {}: section-7 indicators at equal f_max (37), {} Lanczos sigma factors (15).",
+                    if sigma { 7 } else { 6 },
+                    if sigma { "with" } else { "without" }
+                ),
+                "level = n sqrt(kappa); paper motor and Table 1 actuator, stroke 25 um, continuous signal. SI units;",
+                "startup_time = T p_0.99; stiction_fraction over the simulated start-up; empty: not available.",
+            ],
+            &[
+                "level",
+                "n",
+                "sqrt_kappa",
+                "f_max_hz",
+                "period_s",
+                "v_inf_m_per_s",
+                "startup_periods",
+                "startup_time_s",
+                "smoothness",
+                "velocity_per_power_m_per_s_va",
+                "durability_per_n",
+                "stiction_fraction",
+            ],
+        );
+        let mut rows: Vec<&GridPoint> = points.iter().filter(|p| p.sigma == sigma).collect();
+        rows.sort_by(|a, b| a.level.total_cmp(&b.level).then(a.n.cmp(&b.n)));
+        for p in &rows {
+            let opt = |v: Option<f64>| v.map_or(Cell::S(""), Cell::F);
+            csv.row(&[
+                Cell::F(p.level),
+                Cell::I(p.n as i64),
+                Cell::F(p.level / p.n as f64),
+                Cell::F(p.f_max),
+                Cell::F(p.period),
+                Cell::F(p.v_inf),
+                p.startup_periods.map_or(Cell::S(""), |v| Cell::I(v as i64)),
+                opt(p.startup_time()),
+                Cell::F(p.smoothness),
+                opt(p.velocity_per_power),
+                Cell::F(p.durability),
+                Cell::F(p.stiction_fraction),
+            ]);
+        }
+        let panels: Vec<Panel> = INDICATORS
+            .iter()
+            .zip(&tops)
+            .enumerate()
+            .map(|(i, (ind, top))| {
+                let mut panel = Panel::new(
+                    Some(ind.title),
+                    Axis::linear(
+                        "number of harmonics n (–)",
+                        (n_lo as f64 - 0.3, n_hi as f64 + 0.3),
+                    )
+                    .ticks(n_hi - n_lo + 1),
+                    Axis::linear(ind.label, (0.0, *top)).scaled(ind.scale),
+                );
+                if i == 0 {
+                    panel.series.push(Series::hline(
+                        None,
+                        IDEAL_STICK_SLIP_MAX,
+                        (n_lo as f64 - 0.3, n_hi as f64 + 0.3),
+                        REFERENCE,
+                        Mark::Dashed(2, 8, 5),
+                    ));
+                }
+                for (c, level) in levels.iter().enumerate() {
+                    let pts: Vec<(f64, f64)> = rows
+                        .iter()
+                        .filter(|p| p.level == *level)
+                        .filter_map(|p| {
+                            (ind.value)(p)
+                                .filter(|v| v.is_finite())
+                                .map(|v| (p.n as f64, v))
+                        })
+                        .collect();
+                    let mark = if c % 2 == 0 {
+                        Mark::LinePoints(2)
+                    } else {
+                        Mark::LineSquares(2)
+                    };
+                    panel
+                        .series
+                        .push(Series::line(None, pts, PALETTE[c % PALETTE.len()], mark));
+                }
+                panel
+            })
+            .collect();
+        let entries: Vec<LegendEntry> = levels
+            .iter()
+            .enumerate()
+            .map(|(c, level)| {
+                let f_max = rows
+                    .iter()
+                    .find(|p| p.level == *level)
+                    .map_or(f64::NAN, |p| p.f_max);
+                let mark = if c % 2 == 0 {
+                    Mark::LinePoints(2)
+                } else {
+                    Mark::LineSquares(2)
+                };
+                LegendEntry::new(
+                    &format!(
+                        "n√κ = {}, f_max = {:.1} kHz",
+                        super::tick_label(*level),
+                        f_max / 1e3
+                    ),
+                    PALETTE[c % PALETTE.len()],
+                    mark,
+                )
+            })
+            .chain(std::iter::once(LegendEntry::new(
+                "ideal stick-slip maximum, 0.06 m/s (a)",
+                REFERENCE,
+                Mark::Dashed(2, 8, 5),
+            )))
+            .collect();
+        let notes = [
+            format!(
+                "grid: n√κ ∈ {{{}}}, n = {n_lo} … {n_hi}",
+                levels
+                    .iter()
+                    .map(|l| super::tick_label(*l))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            "√κ = (n√κ) / n; f_max = n√κ · 1574.8 Hz (37)".to_owned(),
+            "paper motor, Table 1 actuator, stroke 25 µm".to_owned(),
+            "lines for visual guidance only (n is an integer)".to_owned(),
+        ];
+        let title = format!(
+            "Figure {}: indicators at equal maximum frequency f_max ∝ n√κ, {} σ factors",
+            if sigma { 7 } else { 6 },
+            if sigma { "with" } else { "without" }
+        );
+        let svg = render(name, (1500, 960), |root| {
+            let body = titled(root, &title)?;
+            let cells = body.split_evenly((2, 3));
+            for (area, panel) in cells.iter().zip(&panels) {
+                draw_panel(area, panel)?;
+            }
+            draw_key(&cells[5], &entries, &notes)
+        })?;
+        Ok(Figure {
+            name: name.to_owned(),
+            svg,
+            csv: csv.finish(),
+        })
+    };
+    Ok([make(false)?, make(true)?])
+}
+
+/// The legend as a column, then notes, in the free sixth cell.
+fn draw_key(area: &Area<'_>, entries: &[LegendEntry], notes: &[String]) -> DrawResult {
+    let lh = line_height(size::LEGEND) + 4;
+    let (w, _) = area.dim_in_pixel();
+    let widest = entries
+        .iter()
+        .map(|e| super::SWATCH + 8 + text_width(&e.label, size::LEGEND))
+        .chain(notes.iter().map(|n| text_width(n, size::LEGEND)))
+        .max()
+        .unwrap_or(0);
+    let x = ((w as i32 - widest) / 2).max(4);
+    let mut y = 40;
+    for e in entries {
+        super::draw_legend_entry(area, e, (x, y))?;
+        y += lh;
+    }
+    y += lh / 2;
+    for n in notes {
+        area.draw_text(
+            n,
+            &font(size::LEGEND).pos(Pos::new(HPos::Left, VPos::Center)),
+            (x, y),
+        )?;
+        y += lh;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::nice_top;
+
+    #[test]
+    fn nice_tops_are_round_and_above() {
+        for (max, top) in [(0.29, 0.4), (47.0, 50.0), (1.3, 1.5)] {
+            assert!((nice_top(max) - top).abs() < 1e-12 * top, "{max}");
+        }
+    }
+}

@@ -1,0 +1,287 @@
+//! The influence of the actuator stroke (the paper's section 8).
+//!
+//! * Figure 9, a schematic: the signal's highest frequency
+//!   `f_max = n sqrt(kappa) sqrt(a_0 / (2 x_hat))` (37) falls as
+//!   `1/sqrt(x_hat)`, the actuator's allowed frequency as `1/x_hat` (43).
+//!   `f_max` is drawn for the default signal (`n = 2`, `sqrt(kappa) = 6`);
+//!   `f_allowed` is scaled to cross it at the paper's stroke of 25 um. The
+//!   best design has `f_max = f_allowed`.
+//! * The stroke scaling law: with the signal shape fixed and
+//!   `T ∝ sqrt(x_hat)` (40), `x_inf ∝ x_hat` (38), `v_inf ∝ sqrt(x_hat)`
+//!   (39) and the start-up time `∝ sqrt(x_hat)` (42). Runs from 1 nm to
+//!   1 mm for three signals, with the least-squares slopes of the log-log
+//!   data in the legend.
+
+use super::{
+    Axis, Cell, Csv, Figure, Mark, Note, PALETTE, Panel, PlotError, REFERENCE, Series, draw_panel,
+    legend_of, loglog_slope, min_max, render, titled, with_legend_on_top,
+};
+use crate::motor::Motor;
+use crate::scene::Scene;
+use crate::signal::{IdealShape, SignalSpec};
+use crate::simulation;
+use plotters::style::text_anchor::{HPos, VPos};
+use rayon::prelude::*;
+
+/// Figure 9: `f_max` (37) and `f_allowed` (43) against the stroke.
+pub fn figure9(motor: &Motor) -> Result<Figure, PlotError> {
+    const NAME: &str = "fig9_fmax_fallowed";
+    let (n, sqrt_kappa, x_design) = (2.0, 6.0, 25e-6);
+    let f_max = |x: f64| n * sqrt_kappa * (motor.a_0() / (2.0 * x)).sqrt();
+    let f_design = f_max(x_design);
+    let f_allowed = |x: f64| f_design * x_design / x;
+    let strokes: Vec<f64> = (0..=60)
+        .map(|i| 10f64.powf(-6.0 + i as f64 / 20.0))
+        .collect();
+    let mut csv = Csv::new(
+        &[
+            "Figure 9 (schematic): f_max = n sqrt(kappa) sqrt(a_0/(2 x_hat)) (37) for n = 2, sqrt(kappa) = 6, a_0 = 124 m/s^2,",
+            "and f_allowed = f_max(25 um) * 25 um / x_hat (43), chosen to cross f_max at x_hat = 25 um. SI units.",
+        ],
+        &["stroke_m", "f_max_hz", "f_allowed_hz"],
+    );
+    for &x in &strokes {
+        csv.row(&[Cell::F(x), Cell::F(f_max(x)), Cell::F(f_allowed(x))]);
+    }
+    let mut p = Panel::new(
+        None,
+        Axis::log("actuator stroke x̂_R (µm)", (1.0, 1e3)).scaled(1e6),
+        Axis::log("frequency (kHz)", (0.3, 1e3)).scaled(1e-3),
+    );
+    p.series.push(Series::line(
+        Some("f_max ∝ 1/√x̂_R (37): n = 2, √κ = 6"),
+        // Power laws are straight on log-log axes: the ends draw them exactly.
+        [strokes[0], strokes[strokes.len() - 1]]
+            .iter()
+            .map(|&x| (x, f_max(x)))
+            .collect(),
+        PALETTE[0],
+        Mark::Line(3),
+    ));
+    p.series.push(Series::line(
+        Some("f_allowed ∝ 1/x̂_R (43), equal to f_max at 25 µm"),
+        [strokes[0], strokes[strokes.len() - 1]]
+            .iter()
+            .map(|&x| (x, f_allowed(x)))
+            .collect(),
+        PALETTE[1],
+        Mark::Line(3),
+    ));
+    p.series.push(Series::line(
+        Some("f_max = f_allowed: the best design"),
+        vec![(x_design, 1e2), (x_design, 1e6)],
+        REFERENCE,
+        Mark::Dashed(2, 4, 4),
+    ));
+    p.series.push(Series::line(
+        None,
+        vec![(x_design, f_design)],
+        PALETTE[7],
+        Mark::Points(6),
+    ));
+    p.notes.push(Note {
+        at: (5e-6, 0.6e3),
+        text: "f_max < f_allowed: bandwidth not fully used".to_owned(),
+        h: HPos::Center,
+        v: VPos::Center,
+    });
+    p.notes.push(Note {
+        at: (2.0e-4, 0.6e3),
+        text: "f_max > f_allowed: velocity impaired".to_owned(),
+        h: HPos::Center,
+        v: VPos::Center,
+    });
+    p.notes.push(Note {
+        at: (x_design * 1.25, f_design * 1.25),
+        text: format!("{:.1} kHz at 25 µm", f_design / 1e3),
+        h: HPos::Left,
+        v: VPos::Bottom,
+    });
+    let legend = legend_of(&[&p]);
+    let svg = render(NAME, (1000, 720), |root| {
+        let body = titled(
+            root,
+            "Figure 9 (schematic): f_max and f_allowed against the actuator stroke",
+        )?;
+        let body = with_legend_on_top(&body, &legend)?;
+        draw_panel(&body, &p)
+    })?;
+    Ok(Figure {
+        name: NAME.to_owned(),
+        svg,
+        csv: csv.finish(),
+    })
+}
+
+/// One signal of the stroke scaling figure.
+struct Shape {
+    label: &'static str,
+    kappa: f64,
+    n: usize,
+    sigma: bool,
+}
+
+const SHAPES: [Shape; 3] = [
+    Shape {
+        label: "n = 2, √κ = 6, σ",
+        kappa: 36.0,
+        n: 2,
+        sigma: true,
+    },
+    Shape {
+        label: "n = 3, κ = 1",
+        kappa: 1.0,
+        n: 3,
+        sigma: false,
+    },
+    Shape {
+        label: "n = 5, κ = 0.36, σ",
+        kappa: 0.36,
+        n: 5,
+        sigma: true,
+    },
+];
+
+/// The stroke scaling law: `v_inf`, the steady-state step `x_inf` and the
+/// start-up time against the stroke (1 nm to 1 mm, 13 strokes) for three
+/// signals of the base scene's motor, with least-squares log-log slopes.
+pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
+    const NAME: &str = "stroke_scaling";
+    let strokes: Vec<f64> = (0..=12)
+        .map(|i| 10f64.powf(-9.0 + i as f64 / 2.0))
+        .collect();
+    let jobs: Vec<(usize, f64)> = (0..SHAPES.len())
+        .flat_map(|s| strokes.iter().map(move |&x| (s, x)))
+        .collect();
+    let runs: Vec<Result<(f64, f64, Option<u64>), crate::Error>> = jobs
+        .par_iter()
+        .map(|&(s, stroke)| {
+            let shape = &SHAPES[s];
+            let mut scene = base.clone();
+            scene.signal = SignalSpec::Fourier {
+                shape: IdealShape {
+                    stroke,
+                    kappa: shape.kappa,
+                    duty: 1.0,
+                },
+                harmonics: shape.n,
+                sigma: shape.sigma,
+            };
+            scene.actuator = None;
+            scene.outputs.indicators = vec![
+                crate::scene::Indicator::VInf,
+                crate::scene::Indicator::StartupTime,
+            ];
+            scene.outputs.trajectory = false;
+            scene.outputs.events = false;
+            simulation::run(&scene).map(|r| (r.period, r.indicators.v_inf, r.startup_periods))
+        })
+        .collect();
+    let mut csv = Csv::new(
+        &[
+            "Stroke scaling (section 8): steady-state velocity v_inf (39), step x_inf = v_inf T (38) and start-up time T p_0.99 (42)",
+            "against the stroke x_hat, signal shape fixed (kappa, n, sigma), so T ∝ sqrt(x_hat) (40). Paper motor. SI units.",
+        ],
+        &[
+            "signal",
+            "n",
+            "kappa",
+            "sigma",
+            "stroke_m",
+            "period_s",
+            "v_inf_m_per_s",
+            "x_inf_m",
+            "startup_periods",
+            "startup_time_s",
+        ],
+    );
+    // Per signal: (stroke, v_inf), (stroke, x_inf), (stroke, startup time).
+    let mut data: Vec<[Vec<(f64, f64)>; 3]> =
+        vec![Default::default(), Default::default(), Default::default()];
+    for (&(s, stroke), run) in jobs.iter().zip(runs) {
+        let (period, v_inf, p) = run.map_err(PlotError::simulation(NAME))?;
+        let shape = &SHAPES[s];
+        let startup = p.map(|p| p as f64 * period);
+        csv.row(&[
+            Cell::S(shape.label.replace(',', ";").as_str()),
+            Cell::I(shape.n as i64),
+            Cell::F(shape.kappa),
+            Cell::S(if shape.sigma { "true" } else { "false" }),
+            Cell::F(stroke),
+            Cell::F(period),
+            Cell::F(v_inf),
+            Cell::F(v_inf * period),
+            p.map_or(Cell::S(""), |p| Cell::I(p as i64)),
+            startup.map_or(Cell::S(""), Cell::F),
+        ]);
+        data[s][0].push((stroke, v_inf));
+        data[s][1].push((stroke, v_inf * period));
+        if let Some(t) = startup {
+            data[s][2].push((stroke, t));
+        }
+    }
+    let quantities = [
+        (
+            "(a) steady-state velocity (39), expected slope 1/2",
+            "v∞ (m/s)",
+            0.5,
+        ),
+        (
+            "(b) steady-state step (38), expected slope 1",
+            "x∞ = v∞·T (m)",
+            1.0,
+        ),
+        (
+            "(c) start-up time (42), expected slope 1/2",
+            "T·p₀.₉₉ (s)",
+            0.5,
+        ),
+    ];
+    let mut panels = Vec::new();
+    for (q, (title, label, _)) in quantities.iter().enumerate() {
+        let (lo, hi) = min_max(data.iter().flat_map(|d| d[q].iter().map(|p| p.1)));
+        let y_range = (
+            10f64.powf(lo.log10().floor()),
+            10f64.powf(hi.log10().ceil()),
+        );
+        let mut p = Panel::new(
+            Some(title),
+            Axis::log(
+                "stroke x̂_R (m)",
+                (strokes[0] / 2.0, strokes[strokes.len() - 1] * 2.0),
+            ),
+            Axis::log(label, y_range),
+        );
+        for (s, shape) in SHAPES.iter().enumerate() {
+            let slope = loglog_slope(&data[s][q]);
+            let mark = if s % 2 == 0 {
+                Mark::LinePoints(2)
+            } else {
+                Mark::LineSquares(2)
+            };
+            p.series.push(Series::line(
+                Some(&format!("{}: slope {slope:.9}", shape.label)),
+                data[s][q].clone(),
+                PALETTE[s],
+                mark,
+            ));
+        }
+        panels.push(p);
+    }
+    let svg = render(NAME, (1600, 640), |root| {
+        let body = titled(
+            root,
+            "Stroke scaling law: fixed signal shape, T ∝ √x̂_R (40); least-squares log-log slopes in the legends",
+        )?;
+        for (a, p) in body.split_evenly((1, 3)).iter().zip(&panels) {
+            let rest = with_legend_on_top(a, &legend_of(&[p]))?;
+            draw_panel(&rest, p)?;
+        }
+        Ok(())
+    })?;
+    Ok(Figure {
+        name: NAME.to_owned(),
+        svg,
+        csv: csv.finish(),
+    })
+}

@@ -1,0 +1,464 @@
+//! Sweeps (`src/sweep.rs`): sharding and merging, rerun skipping, the
+//! `level` axis, case order, and bad sweep files. Small grids of the
+//! paper's motor, so that the whole file runs in seconds.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use stickslip::Scene;
+use stickslip::sweep::{self, Axis, AxisValue, Shard, Sweep};
+
+/// 2 levels x 3 n x 2 sigma = 12 cases of the default scene's motor.
+const SMALL: &str = r#"
+[axes]
+level = [3, 6]
+harmonics = [2, 3, 4]
+sigma = [false, true]
+"#;
+
+/// A fresh directory for one test.
+fn dir(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("sweep")
+        .join(name);
+    let _ = fs::remove_dir_all(&d);
+    fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    fs::write(&p, text).unwrap();
+    p
+}
+
+fn stickslip(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn ok(o: Output) -> String {
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "{err}");
+    err
+}
+
+fn failure(o: Output) -> String {
+    assert!(!o.status.success(), "expected a failure");
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// CSV rows as header-keyed maps, without `wall_time_s`.
+fn rows_without_timing(path: &Path) -> Vec<Vec<(String, String)>> {
+    let mut reader = csv::Reader::from_path(path).unwrap();
+    let header = reader.headers().unwrap().clone();
+    reader
+        .records()
+        .map(|r| {
+            header
+                .iter()
+                .zip(r.unwrap().iter())
+                .filter(|(k, _)| *k != "wall_time_s")
+                .map(|(k, v)| (k.to_owned(), v.to_owned()))
+                .collect()
+        })
+        .collect()
+}
+
+/// Issue 4: "A sweep split into 3 shards and merged equals the unsharded
+/// sweep row for row" — byte for byte without timing, every column but the
+/// wall time with it, in CSV and JSON lines.
+#[test]
+fn three_shards_merged_equal_the_unsharded_sweep() {
+    let d = dir("shards");
+    let file = write(&d, "small.toml", SMALL);
+    for (ext, timing) in [("csv", false), ("jsonl", false), ("csv", true)] {
+        let timing_flag: &[&str] = if timing { &[] } else { &["--no-timing"] };
+        let whole = d.join(format!("whole-{timing}.{ext}"));
+        let mut args = vec!["sweep", s(&file), "-q", "-o", s(&whole)];
+        args.extend(timing_flag);
+        ok(stickslip(&args));
+        let mut shards = Vec::new();
+        for i in 1..=3 {
+            let out = d.join(format!("shard{i}-{timing}.{ext}"));
+            let shard = format!("{i}/3");
+            let mut args = vec!["sweep", s(&file), "-q", "--shard", &shard, "-o", s(&out)];
+            args.extend(timing_flag);
+            let err = ok(stickslip(&args));
+            assert!(err.contains("4 cases in shard"), "{err}");
+            shards.push(out);
+        }
+        let merged = d.join(format!("merged-{timing}.{ext}"));
+        // Inputs in any order, one of them twice: identical rows are fine.
+        let mut args = vec!["merge", s(&merged), s(&shards[2]), s(&shards[0])];
+        args.extend([s(&shards[1]), s(&shards[0])]);
+        ok(stickslip(&args));
+        let (a, b) = (
+            fs::read_to_string(&whole).unwrap(),
+            fs::read_to_string(&merged).unwrap(),
+        );
+        if timing {
+            assert_eq!(rows_without_timing(&whole), rows_without_timing(&merged));
+            assert_eq!(rows_without_timing(&whole).len(), 12);
+        } else {
+            assert_eq!(a, b, "{ext}");
+            let rows = if ext == "csv" {
+                a.lines().count() - 1
+            } else {
+                a.lines().count()
+            };
+            assert_eq!(rows, 12);
+        }
+        if ext == "jsonl" {
+            for (i, line) in a.lines().enumerate() {
+                let v: serde_json::Value = serde_json::from_str(line).unwrap();
+                assert_eq!(v["case"], i);
+                assert!(v["v_inf"].as_f64().unwrap() > 0.0);
+                assert!(v["failure"].is_null());
+            }
+        }
+    }
+}
+
+/// Without timing the same sweep writes the same bytes, run to run.
+#[test]
+fn a_sweep_without_timing_is_byte_identical_run_to_run() {
+    let d = dir("identical");
+    let file = write(&d, "small.toml", SMALL);
+    let (a, b) = (d.join("a.csv"), d.join("b.csv"));
+    ok(stickslip(&[
+        "sweep",
+        s(&file),
+        "-q",
+        "--no-timing",
+        "-o",
+        s(&a),
+    ]));
+    ok(stickslip(&[
+        "sweep",
+        s(&file),
+        "-q",
+        "--no-timing",
+        "-j",
+        "1",
+        "-o",
+        s(&b),
+    ]));
+    assert_eq!(fs::read(&a).unwrap(), fs::read(&b).unwrap());
+}
+
+/// A rerun keeps the rows already written (complete lines only) and runs
+/// the missing cases: deleting rows and cutting the last line gives the
+/// same file back; a kept row is not recomputed.
+#[test]
+fn a_rerun_runs_only_the_missing_cases() {
+    let d = dir("rerun");
+    let file = write(&d, "small.toml", SMALL);
+    let out = d.join("out.csv");
+    let args = ["sweep", s(&file), "-q", "--no-timing", "-o", s(&out)];
+    ok(stickslip(&args));
+    let full = fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = full.lines().collect();
+    assert_eq!(lines.len(), 13);
+
+    // Drop cases 2, 5 and 6; cut the last row (case 11) in the middle.
+    let mut damaged: Vec<&str> = lines
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| ![3, 6, 7].contains(i))
+        .map(|(_, l)| *l)
+        .collect();
+    let last = damaged.pop().unwrap();
+    let damaged = format!("{}\n{}", damaged.join("\n"), &last[..last.len() / 2]);
+    fs::write(&out, damaged).unwrap();
+    let err = ok(stickslip(&args));
+    assert!(err.contains("8 already written, 4 run"), "{err}");
+    assert_eq!(fs::read_to_string(&out).unwrap(), full);
+
+    // The library with a checkpoint after every case writes the same.
+    fs::write(&out, "").unwrap();
+    let options = sweep::Options {
+        timing: false,
+        progress: false,
+        checkpoint: std::time::Duration::ZERO,
+        ..sweep::Options::new(&out)
+    };
+    let summary = sweep::execute(&sweep::load(&file).unwrap(), &options).unwrap();
+    assert_eq!((summary.ran, summary.skipped, summary.rows), (12, 0, 12));
+    assert_eq!(fs::read_to_string(&out).unwrap(), full);
+
+    // Nothing missing: nothing runs, and a kept row is kept as it is.
+    let edited = full.replacen(lines[1], &lines[1].replacen(",0.0", ",9.0", 1), 1);
+    assert_ne!(edited, full);
+    fs::write(&out, &edited).unwrap();
+    let err = ok(stickslip(&args));
+    assert!(err.contains("12 already written, 0 run"), "{err}");
+    assert_eq!(fs::read_to_string(&out).unwrap(), edited);
+
+    // An output with other columns (here: timing) is refused, untouched.
+    let err = failure(stickslip(&["sweep", s(&file), "-q", "-o", s(&out)]));
+    assert!(
+        err.contains("has no columns wall_time_s compared with"),
+        "{err}"
+    );
+    assert_eq!(fs::read_to_string(&out).unwrap(), edited);
+
+    // Rows of another sweep (other axis values) are refused, untouched.
+    let other = write(&d, "other.toml", &SMALL.replace("[3, 6]", "[3, 7]"));
+    let err = failure(stickslip(&[
+        "sweep",
+        s(&other),
+        "-q",
+        "--no-timing",
+        "-o",
+        s(&out),
+    ]));
+    assert!(err.contains("different sweep"), "{err}");
+    assert_eq!(fs::read_to_string(&out).unwrap(), edited);
+}
+
+/// The `level` axis sets `sqrt(kappa) = level / n` (37): each case is the
+/// scene written by hand with that `sqrt_kappa`.
+#[test]
+fn level_axis_sets_sqrt_kappa_to_level_over_n() {
+    let sweep = Sweep::from_toml_str(SMALL, "<string>", Path::new(".")).unwrap();
+    let cases = sweep.cases();
+    assert_eq!(cases.len(), 12);
+    // sqrt(kappa) by hand: level 3 over n = 2, 3, 4, then level 6.
+    let by_hand = [1.5, 1.5, 1.0, 1.0, 0.75, 0.75, 3.0, 3.0, 2.0, 2.0, 1.5, 1.5];
+    for (case, sqrt_kappa) in cases.iter().zip(by_hand) {
+        let n = case
+            .value(Axis::Harmonics)
+            .and_then(AxisValue::as_f64)
+            .unwrap();
+        let sigma = case
+            .value(Axis::Sigma)
+            .and_then(AxisValue::as_bool)
+            .unwrap();
+        let manual = format!(
+            "[signal]\nkind = \"fourier\"\nstroke = 25e-6\nsqrt_kappa = {sqrt_kappa}\nharmonics = {n}\nsigma = {sigma}\n"
+        );
+        let scene = Scene {
+            signal: Scene::from_toml_str(&manual, "<manual>").unwrap().signal,
+            ..Scene::default()
+        };
+        assert_eq!(case.scene, scene, "case {}", case.index);
+    }
+    // Case order: level slowest, then n, then sigma fastest.
+    let order: Vec<String> = cases.iter().take(4).map(|c| c.describe()).collect();
+    assert_eq!(
+        order,
+        [
+            "level = 3, harmonics = 2, sigma = false",
+            "level = 3, harmonics = 2, sigma = true",
+            "level = 3, harmonics = 3, sigma = false",
+            "level = 3, harmonics = 3, sigma = true",
+        ]
+    );
+    // Without a harmonics axis, n comes from the base scene (n = 2).
+    let sweep = Sweep::from_toml_str("[axes]\nlevel = [12]\n", "<string>", Path::new(".")).unwrap();
+    assert_eq!(
+        sweep.cases()[0].scene,
+        Scene::default(),
+        "level 12 / n 2 = 6"
+    );
+}
+
+/// `run_cases` returns the results in case order, whatever finishes first,
+/// and equal to single runs.
+#[test]
+fn run_cases_returns_results_in_case_order() {
+    let sweep = Sweep::from_toml_str(SMALL, "<string>", Path::new(".")).unwrap();
+    let mut cases = sweep.cases();
+    cases.reverse();
+    let results = sweep::run_cases(&cases, false);
+    for (case, result) in cases.iter().zip(&results) {
+        let r = result.as_ref().unwrap();
+        assert_eq!(r.index, case.index);
+        assert_eq!(r.values, case.values);
+        let single = sweep::run_case(case).unwrap();
+        let (a, b) = (r.report.indicators.v_inf, single.report.indicators.v_inf);
+        assert!(
+            (a - b).abs() <= 1e-15 * b.abs(),
+            "case {}: {a} vs {b}",
+            case.index
+        );
+    }
+}
+
+#[test]
+fn shards_parse_one_based() {
+    let shard: Shard = "2/3".parse().unwrap();
+    assert_eq!((shard.index, shard.count), (2, 3));
+    assert_eq!(
+        (0..9).filter(|c| shard.contains(*c)).collect::<Vec<_>>(),
+        [1, 4, 7]
+    );
+    for bad in ["0/3", "4/3", "1/0", "a/3", "3", "-1/3"] {
+        assert!(bad.parse::<Shard>().is_err(), "{bad}");
+    }
+    let err = failure(stickslip(&["sweep", "x.toml", "--shard", "0/3"]));
+    assert!(err.contains("1 <= i <= N"), "{err}");
+}
+
+/// Bad sweep files: a one-line error naming the sweep field and value, a
+/// non-zero exit, and no output file.
+#[test]
+fn bad_sweep_files_are_refused_before_anything_runs() {
+    let d = dir("bad");
+    write(
+        &d,
+        "ideal.toml",
+        "[signal]\nkind = \"ideal\"\nstroke = 25e-6\nkappa = 1.0\n",
+    );
+    write(
+        &d,
+        "no_actuator.toml",
+        "[motor]\nslider_mass = 1.4e-3\ncontact_force = 1.0\nmu_static = 0.1736\nmu_dynamic = 0.1568\n",
+    );
+    let cases: &[(&str, &str)] = &[
+        (
+            "[axes]\nlevel = [3, 6, -3]\n",
+            "axes.level[2] = -3: must be positive",
+        ),
+        (
+            "[axes]\nlevel = [3]\nharmonics = [2, 0]\n",
+            "axes.harmonics[1] = 0: must be an integer from 1 to",
+        ),
+        (
+            "[axes]\nsqrt_kappa = [1, nan]\n",
+            "axes.sqrt_kappa[1] = NaN: must be a finite number",
+        ),
+        (
+            "[axes]\nduty = [0.5, 1.5]\n",
+            "axes.duty[1] = 1.5: must lie in (0, 1]",
+        ),
+        (
+            "[axes]\nmu_static = [-0.1]\n",
+            "axes.mu_static[0] = -0.1: must not be negative",
+        ),
+        (
+            "[axes]\nharmonics = [2, 3, 2]\n",
+            "axes.harmonics[2] = 2: repeats axes.harmonics[0]",
+        ),
+        (
+            "[axes]\nsigma = [true, false, true]\n",
+            "axes.sigma[2]: true repeats axes.sigma[0]",
+        ),
+        ("[axes]\nsigma = []\n", "axes.sigma: is empty"),
+        (
+            "[axes]\nlevel = [3]\nkappa = [1]\n",
+            "at most one of axes.level, axes.sqrt_kappa and axes.kappa",
+        ),
+        (
+            "[axes]\nmu_dynamic = [0.1, 0.2]\n",
+            "case 1 (mu_dynamic = 0.2): motor.mu_dynamic = 0.2: must not exceed motor.mu_static = 0.1736",
+        ),
+        ("[axes]\nlevels = [3]\n", "unknown field `levels`"),
+        (
+            "[axes]\nharmonics = [2.5]\n",
+            "invalid type: floating point `2.5`, expected i64 (line 2, column 14: harmonics = [2.5])",
+        ),
+        ("bases = \"x\"\n", "unknown field `bases`"),
+        (
+            "base = \"ideal.toml\"\n[axes]\nharmonics = [2]\n",
+            "axes.harmonics: needs a base signal with kind = \"fourier\"",
+        ),
+        (
+            "base = \"missing.toml\"\n",
+            "base scene: cannot read scene file",
+        ),
+        (
+            "[outputs]\nindicators = [\"speed\"]\n",
+            "unknown indicator \"speed\"",
+        ),
+        ("[outputs]\nformat = \"xml\"\n", "unknown variant `xml`"),
+        (
+            "base = \"no_actuator.toml\"\n[outputs]\nindicators = [\"velocity_per_power\"]\n",
+            "outputs.indicators: velocity_per_power needs an [actuator] table",
+        ),
+    ];
+    for (i, (text, expected)) in cases.iter().enumerate() {
+        let file = write(&d, &format!("bad{i}.toml"), text);
+        let out = d.join(format!("bad{i}.csv"));
+        let err = failure(stickslip(&["sweep", s(&file), "-q", "-o", s(&out)]));
+        assert!(err.contains(expected), "{text:?}: {err}");
+        assert!(
+            err.contains(&format!("bad{i}.toml")),
+            "names the file: {err}"
+        );
+        assert_eq!(err.trim().lines().count(), 1, "one line: {err}");
+        assert!(!out.exists(), "{text:?} left an output");
+    }
+}
+
+/// `merge` refuses inputs that do not fit together, naming the file.
+#[test]
+fn merge_refuses_mismatched_inputs() {
+    let d = dir("merge");
+    let file = write(&d, "small.toml", SMALL);
+    let (a, b, c) = (d.join("a.csv"), d.join("b.csv"), d.join("c.jsonl"));
+    ok(stickslip(&[
+        "sweep",
+        s(&file),
+        "-q",
+        "--no-timing",
+        "--shard",
+        "1/2",
+        "-o",
+        s(&a),
+    ]));
+    ok(stickslip(&[
+        "sweep",
+        s(&file),
+        "-q",
+        "--shard",
+        "2/2",
+        "-o",
+        s(&b),
+    ]));
+    ok(stickslip(&[
+        "sweep",
+        s(&file),
+        "-q",
+        "--no-timing",
+        "--shard",
+        "2/2",
+        "-o",
+        s(&c),
+    ]));
+    let out = d.join("out.csv");
+    let err = failure(stickslip(&["merge", s(&out), s(&a), s(&b)]));
+    assert!(
+        err.contains("b.csv: has the extra columns wall_time_s compared with"),
+        "{err}"
+    );
+    let err = failure(stickslip(&["merge", s(&out), s(&a), s(&c)]));
+    assert!(err.contains("c.jsonl") && err.contains("jsonl"), "{err}");
+    // The same case with different content.
+    let text = fs::read_to_string(&a).unwrap();
+    let line = text.lines().nth(1).unwrap();
+    let changed = write(
+        &d,
+        "changed.csv",
+        &text.replacen(line, &line.replacen(",0.0", ",9.0", 1), 1),
+    );
+    let err = failure(stickslip(&["merge", s(&out), s(&a), s(&changed)]));
+    assert!(
+        err.contains("changed.csv") && err.contains("case 0"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    // A gap is reported, not refused.
+    let err = ok(stickslip(&["merge", s(&out), s(&a)]));
+    assert!(
+        err.contains("missing") && err.contains("[1, 3, 5, 7, 9]"),
+        "{err}"
+    );
+}
