@@ -24,6 +24,7 @@ pub mod error;
 pub mod indicators;
 pub mod motor;
 pub mod observer;
+pub mod output;
 pub mod plot;
 pub mod power;
 pub mod report;

@@ -26,6 +26,10 @@ enum Command {
         /// Print one JSON object instead of the summary.
         #[arg(long)]
         json: bool,
+        /// Write the output to this file (atomically, only after the run
+        /// succeeded) instead of standard output.
+        #[arg(long, short)]
+        output: Option<PathBuf>,
     },
     /// Print the built-in default scene as TOML.
     DefaultScene,
@@ -81,17 +85,25 @@ fn load(path: Option<&PathBuf>) -> Result<Scene, String> {
     }
 }
 
-fn run(scene: Option<PathBuf>, json: bool) -> Result<(), String> {
+fn run(scene: Option<PathBuf>, json: bool, output: Option<PathBuf>) -> Result<(), String> {
     let scene = load(scene.as_ref())?;
     let result = simulation::run(&scene).map_err(|e| e.to_string())?;
-    if json {
-        let text =
+    let text = if json {
+        let mut text =
             serde_json::to_string_pretty(&report::to_json(&result)).map_err(|e| e.to_string())?;
-        println!("{text}");
+        text.push('\n');
+        text
     } else {
-        print!("{}", report::to_text(&result));
+        report::to_text(&result)
+    };
+    match output {
+        Some(path) => stickslip::output::write_atomically(&path, text.as_bytes())
+            .map_err(|e| format!("cannot write {}: {e}", path.display())),
+        None => {
+            print!("{text}");
+            Ok(())
+        }
     }
-    Ok(())
 }
 
 fn sweep(
@@ -160,8 +172,12 @@ fn merge(output: PathBuf, inputs: Vec<PathBuf>) -> Result<(), String> {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
-        None => run(None, false),
-        Some(Command::Run { scene, json }) => run(scene, json),
+        None => run(None, false, None),
+        Some(Command::Run {
+            scene,
+            json,
+            output,
+        }) => run(scene, json, output),
         Some(Command::DefaultScene) => {
             print!("{}", Scene::default().to_toml());
             Ok(())

@@ -108,6 +108,7 @@ pub fn to_json(r: &RunReport) -> Value {
         m.insert(indicator.name().into(), value);
         err.insert(indicator.name().into(), option_number(error));
     }
+    m.insert("regime".into(), json!(r.regime().name()));
     m.insert("period".into(), number(r.period));
     m.insert("f0".into(), number(1.0 / r.period));
     m.insert("f_max".into(), option_number(r.f_max));
@@ -181,6 +182,7 @@ pub fn to_text(r: &RunReport) -> String {
             .map(|f| format!(", f_max = {} Hz", format_with_error(f, None)))
             .unwrap_or_default()
     );
+    let _ = writeln!(out, "steady state: {}", r.regime().name());
     let _ = writeln!(out, "indicators (± estimated absolute error):");
     for indicator in &r.requested {
         match indicator {

@@ -63,13 +63,59 @@ pub struct RunReport {
     pub work: WorkCounters,
     /// Wall time of the simulation (not of parsing or output).
     pub wall_time: Duration,
+    /// Rod velocity at the start of a period (right limit at phase 0).
+    pub steady_start_rod_velocity: f64,
     /// The event log of the transient, if asked.
     pub event_log: Option<Vec<Event>>,
     /// The steady-state period's segments, if asked.
     pub trajectory: Option<Vec<Segment>>,
 }
 
+/// The mode of operation in steady state (Part I of the paper): whether the
+/// slider sticks at all, and whether it ever slips.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Regime {
+    /// The slider never slips: it follows the rod (`a_R` stays in the stick
+    /// band).
+    Stuck,
+    /// Phases of stiction and of sliding in every period.
+    StickSlip,
+    /// No stiction in steady state: the slider always slides.
+    SlipSlip,
+}
+
+impl Regime {
+    /// Name in reports: `stuck`, `stick-slip`, `slip-slip`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Regime::Stuck => "stuck",
+            Regime::StickSlip => "stick-slip",
+            Regime::SlipSlip => "slip-slip",
+        }
+    }
+}
+
 impl RunReport {
+    /// The steady-state mode of operation, from the steady period's events
+    /// (a period without events is stuck if the slider was stuck at the
+    /// start of the period, else it slides throughout).
+    pub fn regime(&self) -> Regime {
+        let ev = &self.steady.stats.events;
+        if ev.total() == 0 {
+            let v_rod = self.steady_start_rod_velocity;
+            return if self.steady.boundary_velocity == v_rod {
+                Regime::Stuck
+            } else {
+                Regime::SlipSlip
+            };
+        }
+        if ev.stick_to_slip + ev.slip_to_stick + ev.grazing > 0 {
+            Regime::StickSlip
+        } else {
+            Regime::SlipSlip
+        }
+    }
+
     /// `v_inf / S` (35), when power was computed.
     pub fn velocity_per_power(&self) -> Option<f64> {
         self.power
@@ -186,6 +232,7 @@ pub fn run_with<E: PeriodEngine>(
         error,
         work: engine.counters(),
         wall_time,
+        steady_start_rod_velocity: signal.velocity(0.0),
         event_log: event_log.map(|l| l.events),
         trajectory: trajectory.map(|t| t.segments),
         transient: Some(transient),

@@ -666,7 +666,7 @@ impl Sweep {
                 path: origin.to_owned(),
                 case: index,
                 values: case.describe(),
-                source,
+                source: Box::new(source),
             })?;
             cases.push(case);
         }

@@ -236,3 +236,24 @@ fn harmonics_spec_reproduces_a_fourier_signal() {
     assert_rel(b.indicators.v_inf, a.indicators.v_inf, 1e-12, "v_inf");
     assert_eq!(a.startup_periods, b.startup_periods);
 }
+
+/// Modes of operation (Part I; section 7 of the paper): a rod acceleration
+/// inside the stick band keeps the slider stuck; the paper's default signal
+/// runs slip-slip ("no significant phases of stiction"); the stick-heavy
+/// scene (n = 5, kappa = 0.36, sigma) sticks in every period (its reference
+/// stiction fraction is 0.25, section7_grid.csv).
+#[test]
+fn steady_state_regimes() {
+    use stickslip::simulation::Regime;
+    let cases = [
+        (fourier(25e-6, 1e-4, 5, true), Regime::Stuck),
+        (fourier(25e-6, 36.0, 2, true), Regime::SlipSlip),
+        (fourier(25e-6, 0.36, 5, true), Regime::StickSlip),
+        (ideal(0.5, 1.0), Regime::StickSlip),
+        (ideal(4.0, 1.0), Regime::SlipSlip),
+    ];
+    for (spec, regime) in cases {
+        let r = run(&scene_with(spec.clone()));
+        assert_eq!(r.regime(), regime, "{spec:?}");
+    }
+}

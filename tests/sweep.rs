@@ -462,3 +462,29 @@ fn merge_refuses_mismatched_inputs() {
         "{err}"
     );
 }
+
+/// A case that cannot run is written with its reason in `failure` (the
+/// other result columns empty), does not stop the sweep, and is not rerun.
+#[test]
+fn a_failing_case_is_written_with_its_reason() {
+    let d = dir("failure");
+    // g_t = 500 m/s^2 > a_0 = 124 m/s^2: friction cannot hold the slider.
+    let file = write(
+        &d,
+        "f.toml",
+        "[axes]\nextra_acceleration = [0, 500]\n[outputs]\nindicators = [\"v_inf\"]\n",
+    );
+    let out = d.join("f.csv");
+    let args = ["sweep", s(&file), "-q", "--no-timing", "-o", s(&out)];
+    let err = ok(stickslip(&args));
+    assert!(err.contains("2 run, 1 failed"), "{err}");
+    let rows = rows_without_timing(&out);
+    let get =
+        |row: &[(String, String)], key: &str| row.iter().find(|(k, _)| k == key).unwrap().1.clone();
+    assert!(get(&rows[0], "v_inf").parse::<f64>().unwrap() > 0.29);
+    assert_eq!(get(&rows[0], "failure"), "");
+    assert_eq!(get(&rows[1], "v_inf"), "");
+    assert!(get(&rows[1], "failure").contains("no periodic steady state"));
+    let err = ok(stickslip(&args));
+    assert!(err.contains("2 already written, 0 run"), "{err}");
+}

@@ -113,6 +113,13 @@ pub fn figure9(motor: &Motor) -> Result<Figure, PlotError> {
     })
 }
 
+/// What the stroke scaling figure needs of a run.
+struct Run {
+    period: f64,
+    v_inf: f64,
+    startup_periods: Option<u64>,
+}
+
 /// One signal of the stroke scaling figure.
 struct Shape {
     label: &'static str,
@@ -153,7 +160,7 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
     let jobs: Vec<(usize, f64)> = (0..SHAPES.len())
         .flat_map(|s| strokes.iter().map(move |&x| (s, x)))
         .collect();
-    let runs: Vec<Result<(f64, f64, Option<u64>), crate::Error>> = jobs
+    let runs: Vec<Result<Run, crate::Error>> = jobs
         .par_iter()
         .map(|&(s, stroke)| {
             let shape = &SHAPES[s];
@@ -174,7 +181,11 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
             ];
             scene.outputs.trajectory = false;
             scene.outputs.events = false;
-            simulation::run(&scene).map(|r| (r.period, r.indicators.v_inf, r.startup_periods))
+            simulation::run(&scene).map(|r| Run {
+                period: r.period,
+                v_inf: r.indicators.v_inf,
+                startup_periods: r.startup_periods,
+            })
         })
         .collect();
     let mut csv = Csv::new(
@@ -199,7 +210,11 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
     let mut data: Vec<[Vec<(f64, f64)>; 3]> =
         vec![Default::default(), Default::default(), Default::default()];
     for (&(s, stroke), run) in jobs.iter().zip(runs) {
-        let (period, v_inf, p) = run.map_err(PlotError::simulation(NAME))?;
+        let Run {
+            period,
+            v_inf,
+            startup_periods: p,
+        } = run.map_err(PlotError::simulation(NAME))?;
         let shape = &SHAPES[s];
         let startup = p.map(|p| p as f64 * period);
         csv.row(&[
@@ -240,9 +255,10 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
     let mut panels = Vec::new();
     for (q, (title, label, _)) in quantities.iter().enumerate() {
         let (lo, hi) = min_max(data.iter().flat_map(|d| d[q].iter().map(|p| p.1)));
+        // Whole decades, a hair wider so that the end decades keep their ticks.
         let y_range = (
-            10f64.powf(lo.log10().floor()),
-            10f64.powf(hi.log10().ceil()),
+            0.999 * 10f64.powf(lo.log10().floor()),
+            1.001 * 10f64.powf(hi.log10().ceil()),
         );
         let mut p = Panel::new(
             Some(title),
