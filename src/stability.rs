@@ -23,7 +23,7 @@ use crate::indicators::CompensatedSum;
 use crate::motor::{Motor, MotorParams};
 use crate::observer::EventLog;
 use crate::scene::{Indicator, Scene};
-use crate::signal::{FourierSignal, IdealShape, Signal, SignalSpec};
+use crate::signal::{FourierSignal, Signal, SignalSpec};
 use crate::simulation::{self, RunReport};
 use std::time::Instant;
 
@@ -143,23 +143,11 @@ pub fn period_cost(signal: &Signal, motor: &Motor, boundary_velocity: f64) -> Op
 }
 
 fn fourier(stroke: f64, kappa: f64, n: usize, sigma: bool) -> SignalSpec {
-    SignalSpec::Fourier {
-        shape: IdealShape {
-            stroke,
-            kappa,
-            duty: 1.0,
-        },
-        harmonics: n,
-        sigma,
-    }
+    SignalSpec::fourier(stroke, kappa, n, sigma)
 }
 
 fn ideal(kappa: f64, duty: f64) -> SignalSpec {
-    SignalSpec::Ideal(IdealShape {
-        stroke: 25e-6,
-        kappa,
-        duty,
-    })
+    SignalSpec::ideal(25e-6, kappa, duty)
 }
 
 fn scene(signal: SignalSpec) -> Scene {

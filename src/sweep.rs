@@ -90,9 +90,20 @@
 //! not rerun. [`merge`] joins shard outputs: same columns required, rows
 //! sorted by case, duplicates allowed only when identical.
 //!
+//! ```sh
+//! # One Slurm job array, 16 shards; a rerun of the array skips finished cases.
+//! #SBATCH --array=1-16
+//! stickslip sweep grid.toml --quiet --no-timing \
+//!     --shard "$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT" \
+//!     -j "$SLURM_CPUS_PER_TASK" -o "grid.$SLURM_ARRAY_TASK_ID.csv"
+//! # Afterwards:
+//! stickslip merge grid.csv grid.*.csv
+//! ```
+//!
 //! # Library use
 //!
 //! ```
+//! use stickslip::Scene;
 //! use stickslip::sweep::{self, Axis, Sweep};
 //! use std::path::Path;
 //!
@@ -100,8 +111,12 @@
 //! let sweep = Sweep::from_toml_str(text, "<string>", Path::new("."))?;
 //! let cases = sweep.cases();
 //! assert_eq!(cases.len(), 2);
-//! // sqrt(kappa) = level / n
 //! assert_eq!(cases[1].value(Axis::Harmonics).and_then(|v| v.as_f64()), Some(3.0));
+//! // level 6 at n = 3: sqrt(kappa) = 2
+//! assert_eq!(cases[1].scene.signal, Scene::from_toml_str(
+//!     "[signal]\nkind = \"fourier\"\nstroke = 25e-6\nsqrt_kappa = 2\nharmonics = 3\nsigma = true",
+//!     "<string>",
+//! )?.signal);
 //! let results = sweep::run_cases(&cases, false);
 //! let v_inf: Vec<f64> = results
 //!     .iter()

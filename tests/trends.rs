@@ -283,7 +283,7 @@ fn with_sigma_odd_n_start_up_faster_than_even_neighbours() {
 /// without sigma) at every level.
 ///
 /// On this grid: n = 2 gains 60-65 %; n = 3 changes by -5.4 % to +10.4 %
-/// (the +10.4 % at level 3, elsewhere within 6 %); n >= 4 loses 5-60 %. At
+/// (the +10.4 % at level 3, elsewhere within 6 %); n >= 4 loses 4.8-56 %. At
 /// level 3 the n = 3 change (+10.4 %) is as large as the losses at n >= 4
 /// there (4.8-9.9 %); at levels 6 to 15 it is smaller than every one.
 #[test]
@@ -327,7 +327,7 @@ fn sigma_raises_smoothness_at_2_keeps_it_at_3_lowers_it_from_4() {
 /// MODEL.md section 7, paper section 7: without sigma the durability is
 /// lowest at n = 2 (every level); with sigma it is "on average about twice
 /// as high". On this grid the sigma/no-sigma ratio is 2.28-2.36 at n = 2
-/// and 1.59-2.36 over all cases (mean about 1.95).
+/// and 1.59 (level 15, n = 5) to 2.36 over all cases, mean 1.95.
 #[test]
 fn durability_lowest_at_n_2_without_sigma_and_about_doubled_with_sigma() {
     let g = grid();

@@ -31,10 +31,10 @@
 //!
 //! plotters' SVG backend without fonts: text stays `<text>` and the viewer
 //! picks the font. Text extents are therefore estimated
-//! ([`text_width`], generous for DejaVu Sans and Arial) and legends are
+//! (`text_width`, generous for DejaVu Sans and Arial) and legends are
 //! laid out here, outside the plotting areas, so that no text can cover
 //! data. Lines are clipped to the axes here as well
-//! ([`clip_polyline`]), so that a zoomed axis (figure 2's acceleration
+//! (`clip_polyline`), so that a zoomed axis (figure 2's acceleration
 //! band) never draws outside its panel.
 
 pub mod performance;
@@ -474,20 +474,28 @@ pub(crate) fn tick_label(v: f64) -> String {
     }
 }
 
-/// Tick labels of a logarithmic axis: powers of ten only (plotters also
-/// offers 2 and 5 times them, which crowd the axis), written plainly when
-/// the whole axis lies in `[0.01, 10000]`.
+/// Tick labels of a logarithmic axis: powers of ten, and on axes of at
+/// most three decades also 2 and 5 times them; the other ticks plotters
+/// offers (3, 4, 6, ... times) stay unlabelled. Written plainly when the
+/// whole axis lies in `[0.01, 10000]`, with a power of ten otherwise.
 fn log_tick_label(v: f64, (lo, hi): (f64, f64)) -> String {
-    let e = v.abs().log10();
-    if (e - e.round()).abs() < 1e-9 {
-        let e = e.round() as i32;
-        if lo >= 0.999e-2 && hi <= 1.001e4 {
-            tick_label(10f64.powi(e))
-        } else {
-            format!("10{}", superscript(e))
-        }
+    let decade = v.abs().log10().floor();
+    let mantissa = v / 10f64.powf(decade);
+    let close = |m: f64| (mantissa - m).abs() < 1e-6;
+    let short_axis = (hi / lo).log10() <= 3.0 + 1e-9;
+    if !(close(1.0) || close(10.0) || (short_axis && (close(2.0) || close(5.0)))) {
+        return String::new();
+    }
+    if lo >= 0.999e-2 && hi <= 1.001e4 {
+        let s = format!("{v:.4}");
+        return s.trim_end_matches('0').trim_end_matches('.').to_owned();
+    }
+    let e = if close(10.0) { decade + 1.0 } else { decade } as i32;
+    let m = mantissa.round() as i64 % 10;
+    if m == 1 || close(10.0) {
+        format!("10{}", superscript(e))
     } else {
-        String::new()
+        format!("{m}×10{}", superscript(e))
     }
 }
 
@@ -946,5 +954,10 @@ mod tests {
         assert_eq!(log_tick_label(1e-3, (1e-9, 1e-3)), "10⁻³");
         assert_eq!(log_tick_label(100.0, (1.0, 1e3)), "100");
         assert_eq!(log_tick_label(2e-3, (1e-9, 1e-3)), "");
+        assert_eq!(log_tick_label(3e-3, (1e-9, 1e-3)), "");
+        assert_eq!(log_tick_label(2.0, (1.0, 100.0)), "2");
+        assert_eq!(log_tick_label(0.05, (0.01, 1.0)), "0.05");
+        assert_eq!(log_tick_label(5e-5, (1e-5, 1e-3)), "5×10⁻⁵");
+        assert_eq!(log_tick_label(3.0, (1.0, 100.0)), "");
     }
 }

@@ -14,7 +14,7 @@
 
 use super::{
     Area, Axis, Cell, Csv, DrawResult, Figure, LegendEntry, Mark, PALETTE, Panel, PlotError,
-    REFERENCE, Series, draw_panel, font, line_height, render, size, text_width, titled,
+    REFERENCE, Series, draw_panel, font, line_height, min_max, render, size, text_width, titled,
 };
 use crate::simulation::RunReport;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -81,35 +81,42 @@ struct Indicator {
     label: &'static str,
     value: fn(&GridPoint) -> Option<f64>,
     scale: f64,
+    /// Logarithmic y axis (values spanning two decades).
+    log: bool,
 }
 
 const INDICATORS: [Indicator; 5] = [
     Indicator {
         title: "(a) steady-state velocity",
+        log: false,
         label: "v∞ (m/s)",
         value: |p| Some(p.v_inf),
         scale: 1.0,
     },
     Indicator {
         title: "(b) start-up time",
+        log: true,
         label: "T·p₀.₉₉ (ms)",
         value: GridPoint::startup_time,
         scale: 1e3,
     },
     Indicator {
         title: "(c) smoothness",
+        log: true,
         label: "ζ∞ (–)",
         value: |p| Some(p.smoothness),
         scale: 1.0,
     },
     Indicator {
         title: "(d) velocity to input power ratio",
+        log: false,
         label: "v∞ / S (mm s⁻¹ VA⁻¹)",
         value: |p| p.velocity_per_power,
         scale: 1e3,
     },
     Indicator {
         title: "(e) durability",
+        log: false,
         label: "δ∞ (N⁻¹)",
         value: |p| Some(p.durability),
         scale: 1.0,
@@ -122,6 +129,12 @@ fn levels(points: &[GridPoint]) -> Vec<f64> {
     l.sort_by(f64::total_cmp);
     l.dedup();
     l
+}
+
+/// The power of ten at or below `min / 1.06`, for a logarithmic axis
+/// (plotters puts its first tick at the first power of ten in the range).
+fn nice_bottom(min: f64) -> f64 {
+    10f64.powf((min / 1.06).log10().floor())
 }
 
 /// A round upper limit for an axis from 0 that holds `max` with a margin.
@@ -149,16 +162,23 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
             reason: "the grid needs points with and without sigma factors".to_owned(),
         });
     }
-    // Shared y ranges: from 0 to a round value above the largest of both.
-    let tops: Vec<f64> = INDICATORS
+    // Shared y ranges for both figures: linear from 0 to a round value above
+    // the largest value, or logarithmic between 1-2-5 values around all.
+    let ranges: Vec<(f64, f64)> = INDICATORS
         .iter()
         .map(|ind| {
-            let max = points
-                .iter()
-                .filter_map(|p| (ind.value)(p))
-                .filter(|v| v.is_finite())
-                .fold(0.0, f64::max);
-            nice_top(max * ind.scale)
+            let (lo, hi) = min_max(
+                points
+                    .iter()
+                    .filter_map(|p| (ind.value)(p))
+                    .filter(|v| v.is_finite() && *v > 0.0)
+                    .map(|v| v * ind.scale),
+            );
+            if ind.log {
+                (nice_bottom(lo), nice_top(hi))
+            } else {
+                (0.0, nice_top(hi))
+            }
         })
         .collect();
     let make = |sigma: bool| -> Result<Figure, PlotError> {
@@ -213,9 +233,9 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
         }
         let panels: Vec<Panel> = INDICATORS
             .iter()
-            .zip(&tops)
+            .zip(&ranges)
             .enumerate()
-            .map(|(i, (ind, top))| {
+            .map(|(i, (ind, range))| {
                 let mut panel = Panel::new(
                     Some(ind.title),
                     Axis::linear(
@@ -223,7 +243,12 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
                         (n_lo as f64 - 0.3, n_hi as f64 + 0.3),
                     )
                     .ticks(n_hi - n_lo + 1),
-                    Axis::linear(ind.label, (0.0, *top)).scaled(ind.scale),
+                    if ind.log {
+                        Axis::log(ind.label, *range).ticks(40)
+                    } else {
+                        Axis::linear(ind.label, *range).ticks(8)
+                    }
+                    .scaled(ind.scale),
                 );
                 if i == 0 {
                     panel.series.push(Series::hline(
@@ -350,12 +375,15 @@ fn draw_key(area: &Area<'_>, entries: &[LegendEntry], notes: &[String]) -> DrawR
 
 #[cfg(test)]
 mod tests {
-    use super::nice_top;
+    use super::{nice_bottom, nice_top};
 
     #[test]
     fn nice_tops_are_round_and_above() {
         for (max, top) in [(0.29, 0.4), (47.0, 50.0), (1.3, 1.5)] {
             assert!((nice_top(max) - top).abs() < 1e-12 * top, "{max}");
+        }
+        for (min, bottom) in [(0.49, 0.1), (1.5, 1.0), (60.0, 10.0)] {
+            assert!((nice_bottom(min) - bottom).abs() < 1e-12 * bottom, "{min}");
         }
     }
 }

@@ -56,10 +56,10 @@ impl IdealSignal {
         self.t1 >= self.period
     }
 
-    /// State at phase `tau` in `[0, T)` (right limit at the jump).
+    /// The acceleration phase's state at `tau`, or rest.
     #[inline]
-    pub fn state(&self, tau: f64) -> RodState {
-        if tau < self.t1 {
+    fn accelerating(&self, tau: f64, accelerating: bool) -> RodState {
+        if accelerating {
             RodState {
                 x: 0.5 * self.a_r * tau * tau,
                 v: self.a_r * tau,
@@ -70,19 +70,17 @@ impl IdealSignal {
         }
     }
 
+    /// State at phase `tau` in `[0, T)` (right limit at the jump).
+    #[inline]
+    pub fn state(&self, tau: f64) -> RodState {
+        self.accelerating(tau, tau < self.t1)
+    }
+
     /// Left limit of the state at phase `tau` in `(0, T]`; at `tau = 0` the
     /// left limit is the end of the previous period.
     pub fn state_before(&self, tau: f64) -> RodState {
         let tau = if tau <= 0.0 { self.period } else { tau };
-        if tau <= self.t1 {
-            RodState {
-                x: 0.5 * self.a_r * tau * tau,
-                v: self.a_r * tau,
-                a: self.a_r,
-            }
-        } else {
-            RodState::default()
-        }
+        self.accelerating(tau, tau <= self.t1)
     }
 
     /// Phase of the jump: `t_1` (discrete) or 0 (continuous).

@@ -107,15 +107,31 @@ impl SignalSpec {
     /// The paper's default signal: `n = 2`, `sqrt(kappa) = 6`, sigma factors,
     /// continuous, stroke 25 um.
     pub fn paper_default() -> Self {
+        Self::fourier(25e-6, 36.0, 2, true)
+    }
+
+    /// The Fourier approximation (8) of the continuous ideal signal with
+    /// `n` harmonics, stroke `stroke` (m) and `kappa`.
+    pub fn fourier(stroke: f64, kappa: f64, n: usize, sigma: bool) -> Self {
         SignalSpec::Fourier {
             shape: IdealShape {
-                stroke: 25e-6,
-                kappa: 36.0,
+                stroke,
+                kappa,
                 duty: 1.0,
             },
-            harmonics: 2,
-            sigma: true,
+            harmonics: n,
+            sigma,
         }
+    }
+
+    /// The ideal signal (11) with stroke `stroke` (m), `kappa` and
+    /// `duty = t_1 / T`.
+    pub fn ideal(stroke: f64, kappa: f64, duty: f64) -> Self {
+        SignalSpec::Ideal(IdealShape {
+            stroke,
+            kappa,
+            duty,
+        })
     }
 
     /// Checks every value; errors name the scene field.

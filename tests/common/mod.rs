@@ -3,7 +3,7 @@
 
 use stickslip::engine::event::{EventEngine, EventOptions};
 use stickslip::scene::Indicator;
-use stickslip::signal::{IdealShape, SignalSpec};
+use stickslip::signal::SignalSpec;
 use stickslip::simulation::{self, RunReport};
 use stickslip::{Motor, MotorParams, Scene, Signal};
 
@@ -27,26 +27,14 @@ pub fn scene_with(signal: SignalSpec) -> Scene {
     scene
 }
 
-/// The ideal signal (11).
+/// The ideal signal (11) with the paper's stroke.
 pub fn ideal(kappa: f64, duty: f64) -> SignalSpec {
-    SignalSpec::Ideal(IdealShape {
-        stroke: 25e-6,
-        kappa,
-        duty,
-    })
+    SignalSpec::ideal(25e-6, kappa, duty)
 }
 
 /// A Fourier signal of the paper's kind.
 pub fn fourier(stroke: f64, kappa: f64, n: usize, sigma: bool) -> SignalSpec {
-    SignalSpec::Fourier {
-        shape: IdealShape {
-            stroke,
-            kappa,
-            duty: 1.0,
-        },
-        harmonics: n,
-        sigma,
-    }
+    SignalSpec::fourier(stroke, kappa, n, sigma)
 }
 
 /// Runs a scene with the event engine.

@@ -1,0 +1,629 @@
+//! Work-precision study: error against wall time for the exact event engine
+//! and the fixed-step reference (`engine::fixed_step`, first-order
+//! Moreau-Jean), on three scenes with the paper's motor:
+//!
+//! * the default scene (n = 2, sqrt(kappa) = 6, sigma factors; slip-slip),
+//! * a stick-heavy scene (n = 5, kappa = 0.36, sigma factors),
+//! * many harmonics (n = 12, kappa = 1, sigma factors).
+//!
+//! The reference runs at 10 to 10^5 steps per period of the highest
+//! harmonic, the event engine at its default tolerances and at looser event
+//! time tolerances (`EventOptions::time_tolerance` 1e-10, 1e-7, 1e-4 of `T`).
+//!
+//! `cargo run --release --example work_precision`
+//!
+//! prints a table and writes `plots/work_precision.svg` (log-log relative
+//! error of `v_inf` and of the start-up time `T p_0.99` against wall time)
+//! and `plots/work_precision.csv` (every point drawn).
+//!
+//! **Errors.** The event engine at default tolerances is the reference
+//! value. For the fixed-step runs the error is the difference to it; for
+//! the event engine it is bounded by its own error estimate (default run)
+//! or by the difference to the default run plus that estimate (looser
+//! runs), and the plot shows that bound. A start-up error of exactly zero
+//! (the same `p_0.99`, which is an integer) cannot be drawn on log axes and
+//! is left out of the figure (it is in the CSV).
+//!
+//! **Timing.** A wall time is the median over repeated runs of the engine's
+//! set-up plus the whole analysis (transient, steady state, indicators), in
+//! this process, one run at a time. The headline ratio (reference at 5000
+//! steps against the event engine on the default scene) interleaves the two
+//! engines' runs. Wall times depend on the machine and its load, so the
+//! time columns of the CSV and the figure differ from run to run; every
+//! other column is the same on every run.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use std::fmt::Write as _;
+use std::time::Instant;
+use stickslip::engine::PeriodEngine;
+use stickslip::engine::event::{EventEngine, EventOptions};
+use stickslip::engine::fixed_step::{FixedStepEngine, FixedStepOptions};
+use stickslip::signal::{IdealShape, SignalSpec};
+use stickslip::simulation::{self, RunReport};
+use stickslip::{Motor, Scene, Signal};
+
+/// Steps per period of the highest harmonic for the reference.
+const STEPS: [u32; 13] = [
+    10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10_000, 20_000, 50_000, 100_000,
+];
+/// Event-time tolerances (relative to `T`) beyond the default `4 eps`.
+const TIME_TOLERANCES: [f64; 3] = [1e-10, 1e-7, 1e-4];
+/// The paper's resolution, compared with the event engine in the summary.
+const PAPER_STEPS: u32 = 5000;
+
+struct Case {
+    /// Short name for the table and CSV.
+    key: &'static str,
+    /// Legend text.
+    label: &'static str,
+    scene: Scene,
+}
+
+fn cases() -> Vec<Case> {
+    let fourier = |kappa: f64, n: usize| SignalSpec::Fourier {
+        shape: IdealShape {
+            stroke: 25e-6,
+            kappa,
+            duty: 1.0,
+        },
+        harmonics: n,
+        sigma: true,
+    };
+    let with = |spec| Scene {
+        signal: spec,
+        ..Scene::default()
+    };
+    vec![
+        Case {
+            key: "default",
+            label: "default scene: n = 2, sqrt(kappa) = 6",
+            scene: Scene::default(),
+        },
+        Case {
+            key: "stick_heavy",
+            label: "stick-heavy: n = 5, kappa = 0.36",
+            scene: with(fourier(0.36, 5)),
+        },
+        Case {
+            key: "many_harmonics",
+            label: "many harmonics: n = 12, kappa = 1",
+            scene: with(fourier(1.0, 12)),
+        },
+    ]
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Engine {
+    /// The event engine with this event-time tolerance (`None`: default).
+    Event(Option<f64>),
+    /// The reference at this many steps per harmonic period.
+    Fixed(u32),
+}
+
+impl Engine {
+    fn setting(self) -> String {
+        match self {
+            Engine::Event(None) => "default".to_owned(),
+            Engine::Event(Some(t)) => format!("time_tol {t:.0e}"),
+            Engine::Fixed(s) => format!("{s} steps"),
+        }
+    }
+}
+
+/// One point of the study.
+struct Point {
+    case: usize,
+    engine: Engine,
+    wall: f64,
+    runs: usize,
+    v_inf: f64,
+    /// Relative error of `v_inf` (fixed: measured; event: bound).
+    v_error: f64,
+    startup_periods: Option<u64>,
+    /// Relative error of the start-up time.
+    startup_error: Option<f64>,
+    periods: u64,
+    events: u64,
+}
+
+fn median(mut xs: Vec<f64>) -> f64 {
+    xs.sort_by(f64::total_cmp);
+    xs[xs.len() / 2]
+}
+
+/// One run: engine set-up plus analysis, timed.
+fn run_once(signal: &Signal, motor: &Motor, scene: &Scene, engine: Engine) -> (RunReport, f64) {
+    fn go<E: PeriodEngine>(e: E, scene: &Scene, motor: &Motor) -> RunReport {
+        simulation::run_with(e, scene, motor).expect("the study's scenes run")
+    }
+    let clock = Instant::now();
+    let report = match engine {
+        Engine::Event(tol) => {
+            let options = EventOptions {
+                time_tolerance: tol.unwrap_or(EventOptions::default().time_tolerance),
+                ..EventOptions::default()
+            };
+            go(EventEngine::new(signal, motor, options), scene, motor)
+        }
+        Engine::Fixed(steps) => {
+            let options = FixedStepOptions {
+                steps_per_harmonic: steps,
+                ..FixedStepOptions::default()
+            };
+            go(FixedStepEngine::new(signal, motor, options), scene, motor)
+        }
+    };
+    (report, clock.elapsed().as_secs_f64())
+}
+
+/// Median wall time over enough runs to fill about a second (3 to 9 runs;
+/// a single run when one takes longer than a second).
+fn measure(
+    signal: &Signal,
+    motor: &Motor,
+    scene: &Scene,
+    engine: Engine,
+) -> (RunReport, f64, usize) {
+    let (report, first) = run_once(signal, motor, scene, engine);
+    let runs = if first > 1.0 {
+        1
+    } else {
+        ((1.0 / first).ceil() as usize).clamp(3, 9)
+    };
+    let mut times = vec![first];
+    for _ in 1..runs {
+        times.push(run_once(signal, motor, scene, engine).1);
+    }
+    (report, median(times), runs)
+}
+
+fn relative(value: f64, exact: f64) -> f64 {
+    ((value - exact) / exact).abs()
+}
+
+fn main() {
+    let cases = cases();
+    let mut points = Vec::new();
+    let mut summary = String::new();
+    for (ci, case) in cases.iter().enumerate() {
+        let (signal, motor) = simulation::build(&case.scene).expect("valid scene");
+        let (exact, wall, runs) = measure(&signal, &motor, &case.scene, Engine::Event(None));
+        let v_exact = exact.indicators.v_inf;
+        let bound = exact.error.v_inf.unwrap_or(0.0);
+        let p_exact = exact.startup_periods;
+        let startup_error = |p: Option<u64>| match (p, p_exact) {
+            (Some(p), Some(q)) => Some((p as f64 - q as f64).abs() / q as f64),
+            _ => None,
+        };
+        let point = |engine, report: &RunReport, wall, runs, v_error| Point {
+            case: ci,
+            engine,
+            wall,
+            runs,
+            v_inf: report.indicators.v_inf,
+            v_error,
+            startup_periods: report.startup_periods,
+            startup_error: startup_error(report.startup_periods),
+            periods: report.work.periods,
+            events: report.work.events.total(),
+        };
+        points.push(point(
+            Engine::Event(None),
+            &exact,
+            wall,
+            runs,
+            bound / v_exact.abs(),
+        ));
+        for tol in TIME_TOLERANCES {
+            let engine = Engine::Event(Some(tol));
+            let (r, wall, runs) = measure(&signal, &motor, &case.scene, engine);
+            let v_error = ((r.indicators.v_inf - v_exact).abs() + bound) / v_exact.abs();
+            points.push(point(engine, &r, wall, runs, v_error));
+        }
+        for steps in STEPS {
+            let engine = Engine::Fixed(steps);
+            let (r, wall, runs) = measure(&signal, &motor, &case.scene, engine);
+            let v_error = relative(r.indicators.v_inf, v_exact);
+            points.push(point(engine, &r, wall, runs, v_error));
+        }
+        if ci == 0 {
+            summary = headline(&signal, &motor, &case.scene, v_exact, bound);
+        }
+    }
+    print!("{}", table(&cases, &points));
+    println!();
+    print!("{summary}");
+    let csv = csv(&cases, &points);
+    let svg = figure(&cases, &points);
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/plots");
+    std::fs::create_dir_all(dir).expect("plots/ can be created");
+    std::fs::write(format!("{dir}/work_precision.csv"), csv).expect("CSV written");
+    std::fs::write(format!("{dir}/work_precision.svg"), svg).expect("SVG written");
+    println!("wrote plots/work_precision.svg and plots/work_precision.csv");
+}
+
+/// The reference at the paper's resolution against the event engine on the
+/// default scene, interleaved in this process.
+fn headline(signal: &Signal, motor: &Motor, scene: &Scene, v_exact: f64, bound: f64) -> String {
+    let pairs = 7;
+    let (mut event_times, mut fixed_times) = (Vec::new(), Vec::new());
+    let mut fixed_v = 0.0;
+    for _ in 0..pairs {
+        event_times.push(run_once(signal, motor, scene, Engine::Event(None)).1);
+        let (r, t) = run_once(signal, motor, scene, Engine::Fixed(PAPER_STEPS));
+        fixed_v = r.indicators.v_inf;
+        fixed_times.push(t);
+    }
+    let (te, tf) = (median(event_times), median(fixed_times));
+    let error_fixed = (fixed_v - v_exact).abs();
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "default scene, {pairs} interleaved runs each (medians), in this process:"
+    );
+    let _ = writeln!(
+        s,
+        "  event engine:               {:9.3} ms, |error of v_inf| <= {bound:.1e} m/s (its estimate)",
+        te * 1e3
+    );
+    let _ = writeln!(
+        s,
+        "  reference at {PAPER_STEPS} steps:    {:9.3} ms, |error of v_inf| =  {error_fixed:.1e} m/s (against the event engine)",
+        tf * 1e3
+    );
+    let _ = writeln!(
+        s,
+        "  time ratio reference / event: {:.0}x (target >= 500x)",
+        tf / te
+    );
+    let _ = writeln!(
+        s,
+        "  accuracy ratio: the event engine is at least {:.1e}x more accurate (target >= 1000x)",
+        error_fixed / bound
+    );
+    s
+}
+
+fn table(cases: &[Case], points: &[Point]) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{:<15} {:<6} {:<16} {:>11} {:>5} {:>22} {:>10} {:>7} {:>10} {:>8} {:>9}",
+        "scene",
+        "engine",
+        "setting",
+        "wall (s)",
+        "runs",
+        "v_inf (m/s)",
+        "rel.err",
+        "p_0.99",
+        "rel.err",
+        "periods",
+        "events"
+    );
+    for p in points {
+        let engine = match p.engine {
+            Engine::Event(_) => "event",
+            Engine::Fixed(_) => "fixed",
+        };
+        let _ = writeln!(
+            s,
+            "{:<15} {:<6} {:<16} {:>11.3e} {:>5} {:>22.15e} {:>10.2e} {:>7} {:>10} {:>8} {:>9}",
+            cases[p.case].key,
+            engine,
+            p.engine.setting(),
+            p.wall,
+            p.runs,
+            p.v_inf,
+            p.v_error,
+            p.startup_periods.map_or("-".to_owned(), |v| v.to_string()),
+            p.startup_error
+                .map_or("-".to_owned(), |e| format!("{e:.2e}")),
+            p.periods,
+            p.events
+        );
+    }
+    s
+}
+
+fn csv(cases: &[Case], points: &[Point]) -> String {
+    let mut s = String::new();
+    s.push_str("# Work-precision study (examples/work_precision.rs): one row per run.\n");
+    s.push_str(
+        "# v_inf_error_rel: fixed = |v_inf - v_inf(event, default)| / v_inf(event, default); \
+         event = that difference plus the default run's error estimate (a bound).\n",
+    );
+    s.push_str(
+        "# startup_error_rel: |p_0.99 - p_0.99(event, default)| / p_0.99(event, default). \
+         wall_time_s: median over `runs` runs (machine dependent). SI units.\n",
+    );
+    s.push_str(
+        "scene,engine,steps_per_harmonic,time_tolerance,wall_time_s,runs,v_inf,\
+         v_inf_error_rel,startup_periods,startup_error_rel,periods,events\n",
+    );
+    for p in points {
+        let (engine, steps, tol) = match p.engine {
+            Engine::Event(t) => (
+                "event",
+                String::new(),
+                format!("{:e}", t.unwrap_or(EventOptions::default().time_tolerance)),
+            ),
+            Engine::Fixed(n) => ("fixed", n.to_string(), String::new()),
+        };
+        let _ = writeln!(
+            s,
+            "{},{engine},{steps},{tol},{:e},{},{:e},{:e},{},{},{},{}",
+            cases[p.case].key,
+            p.wall,
+            p.runs,
+            p.v_inf,
+            p.v_error,
+            p.startup_periods.map_or(String::new(), |v| v.to_string()),
+            p.startup_error.map_or(String::new(), |e| format!("{e:e}")),
+            p.periods,
+            p.events
+        );
+    }
+    s
+}
+
+// ------------------------------------------------------------- figure ----
+
+/// Okabe-Ito colours, one per scene.
+const COLORS: [RGBColor; 3] = [
+    RGBColor(0, 114, 178),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 158, 115),
+];
+const GREY: RGBColor = RGBColor(110, 110, 110);
+
+fn font(size: f64) -> TextStyle<'static> {
+    ("sans-serif", size).into_font().color(&BLACK)
+}
+
+/// `10^k` with a superscript exponent.
+fn power_of_ten(v: &f64) -> String {
+    let k = v.log10().round() as i32;
+    let digits: String = k
+        .to_string()
+        .chars()
+        .map(|c| match c {
+            '-' => '⁻',
+            '0' => '⁰',
+            '1' => '¹',
+            '2' => '²',
+            '3' => '³',
+            '4' => '⁴',
+            '5' => '⁵',
+            '6' => '⁶',
+            '7' => '⁷',
+            '8' => '⁸',
+            _ => '⁹',
+        })
+        .collect();
+    format!("10{digits}")
+}
+
+type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
+type DrawResult = Result<(), DrawingAreaErrorKind<std::io::Error>>;
+
+fn figure(cases: &[Case], points: &[Point]) -> String {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (1400, 800)).into_drawing_area();
+        draw(&root, cases, points).expect("the figure draws");
+        root.present().expect("the figure renders");
+    }
+    svg
+}
+
+fn draw(root: &Area<'_>, cases: &[Case], points: &[Point]) -> DrawResult {
+    root.fill(&WHITE)?;
+    let (title, rest) = root.split_vertically(48);
+    title.draw_text(
+        "Work precision: fixed-step reference (first order) and event engine",
+        &font(24.0).pos(Pos::new(HPos::Center, VPos::Center)),
+        (700, 28),
+    )?;
+    let (panels, legend) = rest.split_vertically(560);
+    let halves = panels.split_evenly((1, 2));
+    let wall_range = (1e-5, 1e1);
+    panel(
+        &halves[0],
+        cases,
+        points,
+        "steady-state velocity v_inf",
+        "relative error of v_inf (dimensionless)",
+        wall_range,
+        (1e-16, 1.0),
+        |p| Some(p.v_error),
+        &[],
+    )?;
+    panel(
+        &halves[1],
+        cases,
+        points,
+        "start-up time T p_0.99",
+        "relative error of the start-up time (dimensionless)",
+        wall_range,
+        (1e-4, 1.0),
+        |p| p.startup_error,
+        &zero_startup_notes(cases, points),
+    )?;
+    draw_legend(&legend, cases)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn panel(
+    area: &Area<'_>,
+    cases: &[Case],
+    points: &[Point],
+    title: &str,
+    y_desc: &str,
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+    value: impl Fn(&Point) -> Option<f64>,
+    notes: &[String],
+) -> DrawResult {
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, font(20.0))
+        .margin(18)
+        .x_label_area_size(62)
+        .y_label_area_size(92)
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("wall time (s), set-up and whole analysis")
+        .y_desc(y_desc)
+        .x_label_formatter(&power_of_ten)
+        .y_label_formatter(&power_of_ten)
+        .x_labels(8)
+        .y_labels(9)
+        .label_style(font(16.0))
+        .axis_desc_style(font(17.0))
+        .light_line_style(RGBColor(235, 235, 235))
+        .bold_line_style(RGBColor(205, 205, 205))
+        .draw()?;
+    let drawable = |p: &Point| {
+        value(p)
+            .filter(|v| *v > 0.0 && v.is_finite())
+            .map(|v| (p.wall, v.clamp(y0, y1)))
+    };
+    if notes.is_empty() {
+        // First order: error ∝ steps^-1 ∝ wall time^-1.
+        let guide = [(1e-4, 1e-3), (1e1, 1e-8)];
+        chart.draw_series(DashedLineSeries::new(guide, 6, 5, GREY.stroke_width(1)))?;
+        chart.draw_series(std::iter::once(Text::new(
+            "slope -1 (first order)",
+            (2e-1, 4e-7),
+            font(14.0).color(&GREY),
+        )))?;
+    }
+    for (ci, _) in cases.iter().enumerate() {
+        let color = COLORS[ci];
+        // The reference's curve, broken where a point is not drawable.
+        let mut pieces: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+        for p in points
+            .iter()
+            .filter(|p| p.case == ci && matches!(p.engine, Engine::Fixed(_)))
+        {
+            match drawable(p) {
+                Some(xy) => pieces.last_mut().expect("a piece").push(xy),
+                None => pieces.push(Vec::new()),
+            }
+        }
+        for piece in &pieces {
+            chart.draw_series(LineSeries::new(piece.clone(), color.stroke_width(2)))?;
+            chart.draw_series(piece.iter().map(|&xy| Circle::new(xy, 4, color.filled())))?;
+        }
+        let event: Vec<(f64, f64)> = points
+            .iter()
+            .filter(|p| p.case == ci && matches!(p.engine, Engine::Event(_)))
+            .filter_map(drawable)
+            .collect();
+        chart.draw_series(
+            event
+                .iter()
+                .map(|&xy| TriangleMarker::new(xy, 8, color.filled())),
+        )?;
+    }
+    for (i, note) in notes.iter().enumerate() {
+        chart.draw_series(std::iter::once(Text::new(
+            note.clone(),
+            (1.3e-5, 2.6e-4 / 1.9f64.powi(i as i32)),
+            font(15.0),
+        )))?;
+    }
+    // Step-count labels along the default scene's reference curve.
+    for p in points.iter().filter(|p| p.case == 0) {
+        if let (Engine::Fixed(s), Some(xy)) = (p.engine, drawable(p))
+            && [10, 100, 1000, 10_000, 100_000].contains(&s)
+        {
+            chart.draw_series(std::iter::once(Text::new(
+                format!("{s}"),
+                xy,
+                font(14.0).pos(Pos::new(HPos::Left, VPos::Bottom)),
+            )))?;
+        }
+    }
+    Ok(())
+}
+
+/// Which start-up errors are exactly zero (and so not drawn).
+fn zero_startup_notes(cases: &[Case], points: &[Point]) -> Vec<String> {
+    let mut notes = vec!["error 0 (same p_0.99), not drawn:".to_owned()];
+    let zero = |p: &&Point| p.startup_error == Some(0.0);
+    let events: Vec<&Point> = points
+        .iter()
+        .filter(|p| matches!(p.engine, Engine::Event(_)))
+        .collect();
+    if events.iter().all(zero) {
+        notes.push("  event engine: every scene and tolerance".to_owned());
+    }
+    for (ci, case) in cases.iter().enumerate() {
+        let fixed: Vec<&Point> = points
+            .iter()
+            .filter(|p| p.case == ci && matches!(p.engine, Engine::Fixed(_)))
+            .collect();
+        let zeros: Vec<String> = fixed
+            .iter()
+            .filter(zero)
+            .filter_map(|p| match p.engine {
+                Engine::Fixed(s) => Some(s.to_string()),
+                Engine::Event(_) => None,
+            })
+            .collect();
+        let name = case.label.split(':').next().unwrap_or(case.key);
+        if zeros.len() == fixed.len() {
+            notes.push(format!("  {name}, reference: every resolution"));
+        } else if !zeros.is_empty() {
+            notes.push(format!("  {name}, reference: {} steps", zeros.join(", ")));
+        }
+    }
+    notes
+}
+
+fn draw_legend(area: &Area<'_>, cases: &[Case]) -> DrawResult {
+    let row = 30;
+    let col = [40, 700];
+    for (ci, case) in cases.iter().enumerate() {
+        let color = COLORS[ci];
+        let y = 26 + row * ci as i32;
+        // Reference: line with dots.
+        let x = col[0];
+        area.draw(&PathElement::new(
+            vec![(x, y), (x + 44, y)],
+            color.stroke_width(2),
+        ))?;
+        area.draw(&Circle::new((x + 22, y), 4, color.filled()))?;
+        area.draw_text(
+            &format!("{}: fixed-step reference", case.label),
+            &font(17.0).pos(Pos::new(HPos::Left, VPos::Center)),
+            (x + 56, y),
+        )?;
+        // Event engine: triangles.
+        let x = col[1];
+        area.draw(&TriangleMarker::new((x + 22, y), 8, color.filled()))?;
+        area.draw_text(
+            &format!("{}: event engine", case.label),
+            &font(17.0).pos(Pos::new(HPos::Left, VPos::Center)),
+            (x + 56, y),
+        )?;
+    }
+    let notes = [
+        "Reference: 10 to 10^5 steps per period of the highest harmonic (labels: steps, default scene). \
+         Event engine: default and looser event-time tolerances (1e-10, 1e-7, 1e-4 T).",
+        "Event errors are bounds (the default run's error estimate plus the difference to it); a start-up \
+         error of zero (same p_0.99) is not drawn. Wall times: medians, machine dependent.",
+    ];
+    for (i, note) in notes.iter().enumerate() {
+        area.draw_text(
+            note,
+            &font(15.0).color(&GREY),
+            (col[0], 26 + row * 3 + 4 + 22 * i as i32),
+        )?;
+    }
+    Ok(())
+}
