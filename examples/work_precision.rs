@@ -470,6 +470,7 @@ fn panel(
     let mut chart = ChartBuilder::on(area)
         .caption(title, font(20.0))
         .margin(18)
+        .margin_right(34)
         .x_label_area_size(62)
         .y_label_area_size(92)
         .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
@@ -493,12 +494,12 @@ fn panel(
     };
     if notes.is_empty() {
         // First order: error ∝ steps^-1 ∝ wall time^-1.
-        let guide = [(1e-4, 1e-3), (1e1, 1e-8)];
-        chart.draw_series(DashedLineSeries::new(guide, 6, 5, GREY.stroke_width(1)))?;
+        let guide = [(3e-5, 1e-6), (3e-3, 1e-8)];
+        chart.draw_series(DashedLineSeries::new(guide, 6, 5, GREY.stroke_width(2)))?;
         chart.draw_series(std::iter::once(Text::new(
             "slope -1 (first order)",
-            (2e-1, 4e-7),
-            font(14.0).color(&GREY),
+            (3e-5, 3e-9),
+            font(15.0).color(&GREY),
         )))?;
     }
     for (ci, _) in cases.iter().enumerate() {
@@ -529,23 +530,31 @@ fn panel(
                 .map(|&xy| TriangleMarker::new(xy, 8, color.filled())),
         )?;
     }
+    // Notes in the panel's empty lower right corner, in pixels.
+    let plot = chart.plotting_area().strip_coord_spec();
+    let (w, h) = plot.dim_in_pixel();
+    let line = 21;
     for (i, note) in notes.iter().enumerate() {
-        chart.draw_series(std::iter::once(Text::new(
-            note.clone(),
-            (1.3e-5, 2.6e-4 / 1.9f64.powi(i as i32)),
-            font(15.0),
-        )))?;
+        let y = h as i32 - 12 - line * (notes.len() - i) as i32;
+        plot.draw_text(note, &font(15.0), (w as i32 * 24 / 100, y))?;
     }
     // Step-count labels along the default scene's reference curve.
     for p in points.iter().filter(|p| p.case == 0) {
         if let (Engine::Fixed(s), Some(xy)) = (p.engine, drawable(p))
-            && [10, 100, 1000, 10_000, 100_000].contains(&s)
+            && [10, 100, 1000, PAPER_STEPS, 100_000].contains(&s)
         {
-            chart.draw_series(std::iter::once(Text::new(
-                format!("{s}"),
-                xy,
-                font(14.0).pos(Pos::new(HPos::Left, VPos::Bottom)),
-            )))?;
+            let text = if s == PAPER_STEPS {
+                format!("{s} (paper)")
+            } else {
+                s.to_string()
+            };
+            // Above right of the point; below it near the right edge.
+            let pos = if xy.0 > 1.0 {
+                Pos::new(HPos::Center, VPos::Top)
+            } else {
+                Pos::new(HPos::Left, VPos::Bottom)
+            };
+            chart.draw_series(std::iter::once(Text::new(text, xy, font(14.0).pos(pos))))?;
         }
     }
     Ok(())
@@ -554,12 +563,12 @@ fn panel(
 /// Which start-up errors are exactly zero (and so not drawn).
 fn zero_startup_notes(cases: &[Case], points: &[Point]) -> Vec<String> {
     let mut notes = vec!["error 0 (same p_0.99), not drawn:".to_owned()];
-    let zero = |p: &&Point| p.startup_error == Some(0.0);
+    let zero = |p: &Point| p.startup_error == Some(0.0);
     let events: Vec<&Point> = points
         .iter()
         .filter(|p| matches!(p.engine, Engine::Event(_)))
         .collect();
-    if events.iter().all(zero) {
+    if events.iter().all(|p| zero(p)) {
         notes.push("  event engine: every scene and tolerance".to_owned());
     }
     for (ci, case) in cases.iter().enumerate() {
@@ -569,7 +578,7 @@ fn zero_startup_notes(cases: &[Case], points: &[Point]) -> Vec<String> {
             .collect();
         let zeros: Vec<String> = fixed
             .iter()
-            .filter(zero)
+            .filter(|p| zero(p))
             .filter_map(|p| match p.engine {
                 Engine::Fixed(s) => Some(s.to_string()),
                 Engine::Event(_) => None,
@@ -613,7 +622,7 @@ fn draw_legend(area: &Area<'_>, cases: &[Case]) -> DrawResult {
         )?;
     }
     let notes = [
-        "Reference: 10 to 10^5 steps per period of the highest harmonic (labels: steps, default scene). \
+        "Reference: 10 to 10^5 steps per period of the highest harmonic (labels: steps, default scene; the paper used 5000). \
          Event engine: default and looser event-time tolerances (1e-10, 1e-7, 1e-4 T).",
         "Event errors are bounds (the default run's error estimate plus the difference to it); a start-up \
          error of zero (same p_0.99) is not drawn. Wall times: medians, machine dependent.",

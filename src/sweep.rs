@@ -1191,22 +1191,13 @@ fn csv_line<S: AsRef<[u8]>>(fields: &[S]) -> String {
     line
 }
 
-/// Writes `text` to a temporary file beside `path`, then renames it over
-/// `path`: readers see the old file or the new one, never a part.
+/// Writes `text` to `path` atomically ([`crate::output::write_atomically`]):
+/// readers see the old file or the new one, never a part.
 fn write_atomically(path: &Path, text: &str) -> Result<(), SweepError> {
-    let error = |source| SweepError::Write {
+    crate::output::write_atomically(path, text.as_bytes()).map_err(|source| SweepError::Write {
         path: path.display().to_string(),
         source,
-    };
-    let name = path
-        .file_name()
-        .map_or("sweep".into(), |n| n.to_string_lossy().into_owned());
-    let temp = path.with_file_name(format!(".{name}.tmp-{}", std::process::id()));
-    let result = std::fs::write(&temp, text).and_then(|()| std::fs::rename(&temp, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temp);
-    }
-    result.map_err(error)
+    })
 }
 
 /// The rows of an output file: the format and columns (`None` for a file

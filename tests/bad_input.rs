@@ -1,14 +1,30 @@
 //! The folder `tests/bad_input/` holds bad scene files and, in
-//! `expected.txt`, the error each must produce. Every one makes the CLI
-//! exit non-zero with that error on one line of stderr, and writes no
-//! output file, not even a partial one.
+//! `expected.txt`, the error each must produce; `tests/bad_input/sweeps/`
+//! the same for sweep files. Every one makes the CLI exit non-zero with
+//! that error on one line of stderr, and writes no output file, not even a
+//! partial one.
 
 use std::path::Path;
 use std::process::Command;
 
 #[test]
-fn every_bad_input_gives_its_error_and_no_output() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad_input");
+fn every_bad_scene_gives_its_error_and_no_output() {
+    check_folder("tests/bad_input", &["run"], &["--json", "--output"]);
+}
+
+#[test]
+fn every_bad_sweep_gives_its_error_and_no_output() {
+    check_folder(
+        "tests/bad_input/sweeps",
+        &["sweep"],
+        &["-q", "--no-timing", "-o"],
+    );
+}
+
+/// Runs `stickslip COMMAND FILE OPTIONS OUTPUT` for every file listed in
+/// the folder's `expected.txt`.
+fn check_folder(folder: &str, command: &[&str], options: &[&str]) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(folder);
     let expected = std::fs::read_to_string(dir.join("expected.txt")).unwrap();
     let cases: Vec<(&str, &str)> = expected
         .lines()
@@ -26,15 +42,18 @@ fn every_bad_input_gives_its_error_and_no_output() {
     listed.sort();
     assert_eq!(files, listed);
 
-    let out_dir = std::env::temp_dir().join(format!("stickslip-bad-input-{}", std::process::id()));
+    let out_dir = std::env::temp_dir().join(format!(
+        "stickslip-bad-input-{}-{}",
+        std::process::id(),
+        folder.replace('/', "-")
+    ));
     std::fs::create_dir_all(&out_dir).unwrap();
     for (file, error) in cases {
-        let output = out_dir.join(format!("{file}.json"));
+        let output = out_dir.join(format!("{file}.out.csv"));
         let o = Command::new(env!("CARGO_BIN_EXE_stickslip"))
-            .arg("run")
+            .args(command)
             .arg(dir.join(file))
-            .arg("--json")
-            .arg("--output")
+            .args(options)
             .arg(&output)
             .output()
             .unwrap();

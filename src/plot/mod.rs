@@ -482,7 +482,7 @@ fn log_tick_label(v: f64, (lo, hi): (f64, f64)) -> String {
     let decade = v.abs().log10().floor();
     let mantissa = v / 10f64.powf(decade);
     let close = |m: f64| (mantissa - m).abs() < 1e-6;
-    let short_axis = (hi / lo).log10() <= 3.0 + 1e-9;
+    let short_axis = (hi / lo).log10() <= 3.01;
     if !(close(1.0) || close(10.0) || (short_axis && (close(2.0) || close(5.0)))) {
         return String::new();
     }

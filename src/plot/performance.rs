@@ -46,6 +46,8 @@ pub struct GridPoint {
     pub durability: f64,
     /// Time in stick / simulated start-up time.
     pub stiction_fraction: f64,
+    /// Time in stick / period, in the steady state.
+    pub stiction_fraction_steady: f64,
     /// `v_inf / S` (m/(s VA)), if an actuator was given.
     pub velocity_per_power: Option<f64>,
 }
@@ -64,6 +66,7 @@ impl GridPoint {
             smoothness: report.indicators.smoothness,
             durability: report.indicators.durability,
             stiction_fraction: report.stiction_fraction_transient.unwrap_or(f64::NAN),
+            stiction_fraction_steady: report.indicators.stiction_fraction,
             velocity_per_power: report.velocity_per_power(),
         }
     }
@@ -131,10 +134,12 @@ fn levels(points: &[GridPoint]) -> Vec<f64> {
     l
 }
 
-/// The power of ten at or below `min / 1.06`, for a logarithmic axis
-/// (plotters puts its first tick at the first power of ten in the range).
+/// Just below the power of ten at or below `min / 1.06`, for a
+/// logarithmic axis: plotters puts its first tick at the first power of
+/// ten it computes inside the range, and `log10(0.1)` rounds to just
+/// above -1.
 fn nice_bottom(min: f64) -> f64 {
-    10f64.powf((min / 1.06).log10().floor())
+    0.999 * 10f64.powf((min / 1.06).log10().floor())
 }
 
 /// A round upper limit for an axis from 0 that holds `max` with a margin.
@@ -195,7 +200,7 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
                     if sigma { "with" } else { "without" }
                 ),
                 "level = n sqrt(kappa); paper motor and Table 1 actuator, stroke 25 um, continuous signal. SI units;",
-                "startup_time = T p_0.99; stiction_fraction over the simulated start-up; empty: not available.",
+                "startup_time = T p_0.99; stiction_fraction over the simulated start-up, stiction_fraction_steady over a steady-state period; empty: not available.",
             ],
             &[
                 "level",
@@ -210,6 +215,7 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
                 "velocity_per_power_m_per_s_va",
                 "durability_per_n",
                 "stiction_fraction",
+                "stiction_fraction_steady",
             ],
         );
         let mut rows: Vec<&GridPoint> = points.iter().filter(|p| p.sigma == sigma).collect();
@@ -229,6 +235,7 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
                 opt(p.velocity_per_power),
                 Cell::F(p.durability),
                 Cell::F(p.stiction_fraction),
+                Cell::F(p.stiction_fraction_steady),
             ]);
         }
         let panels: Vec<Panel> = INDICATORS
@@ -382,7 +389,7 @@ mod tests {
         for (max, top) in [(0.29, 0.4), (47.0, 50.0), (1.3, 1.5)] {
             assert!((nice_top(max) - top).abs() < 1e-12 * top, "{max}");
         }
-        for (min, bottom) in [(0.49, 0.1), (1.5, 1.0), (60.0, 10.0)] {
+        for (min, bottom) in [(0.49, 0.0999), (1.5, 0.999), (60.0, 9.99)] {
             assert!((nice_bottom(min) - bottom).abs() < 1e-12 * bottom, "{min}");
         }
     }

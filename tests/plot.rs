@@ -1,0 +1,85 @@
+//! Figures (`src/plot/`): the same inputs give the same bytes, every figure
+//! is written as SVG with its CSV beside it, and the CSV is rectangular.
+
+use stickslip::Motor;
+use stickslip::plot::performance::{GridPoint, figures6_7};
+use stickslip::plot::{Figure, scaling, signals};
+
+/// Every data row has as many cells as the header; returns the row count.
+fn check_csv(figure: &Figure) -> usize {
+    let mut lines = figure.csv.lines().filter(|l| !l.starts_with('#'));
+    let columns = lines.next().expect("a header").split(',').count();
+    let mut rows = 0;
+    for line in lines {
+        assert_eq!(line.split(',').count(), columns, "{}: {line}", figure.name);
+        rows += 1;
+    }
+    rows
+}
+
+#[test]
+fn signal_figures_are_byte_identical_and_complete() {
+    let motor = Motor::default();
+    let makers: [fn(&Motor) -> Result<Figure, stickslip::plot::PlotError>; 5] = [
+        signals::figure2,
+        signals::figure3,
+        signals::figure4,
+        signals::figure5,
+        scaling::figure9,
+    ];
+    for make in makers {
+        let a = make(&motor).unwrap();
+        let b = make(&motor).unwrap();
+        assert_eq!(a, b, "{} differs between two runs", a.name);
+        assert!(a.svg.starts_with("<svg") && a.svg.trim_end().ends_with("</svg>"));
+        assert!(check_csv(&a) > 0, "{} has data", a.name);
+    }
+}
+
+/// Figures 6 and 7 from a synthetic grid: both figures, one CSV row per
+/// point, the same bytes twice.
+#[test]
+fn grid_figures_from_points() {
+    let mut points = Vec::new();
+    for level in [3.0, 6.0] {
+        for n in 2..=4 {
+            for sigma in [false, true] {
+                let x = level / n as f64 + if sigma { 1.0 } else { 0.0 };
+                points.push(GridPoint {
+                    level,
+                    n,
+                    sigma,
+                    f_max: level * 1574.8,
+                    period: 1e-4 * n as f64 / level,
+                    v_inf: 0.01 * x,
+                    startup_periods: Some(n as u64 + 1),
+                    smoothness: x,
+                    durability: 0.3 + 0.01 * x,
+                    stiction_fraction: 0.0,
+                    stiction_fraction_steady: 0.0,
+                    velocity_per_power: Some(1e-4 * x),
+                });
+            }
+        }
+    }
+    let [six, seven] = figures6_7(&points).unwrap();
+    assert_eq!(check_csv(&six), 6);
+    assert_eq!(check_csv(&seven), 6);
+    assert_eq!(figures6_7(&points).unwrap(), [six, seven]);
+    let without_sigma: Vec<GridPoint> = points.iter().filter(|p| !p.sigma).copied().collect();
+    assert!(
+        figures6_7(&without_sigma).is_err(),
+        "needs both sigma settings"
+    );
+}
+
+#[test]
+fn figures_are_written_beside_each_other() {
+    let dir = std::env::temp_dir().join(format!("stickslip-plot-test-{}", std::process::id()));
+    let figure = signals::figure3(&Motor::default()).unwrap();
+    let [svg, csv] = figure.write_to(&dir).unwrap();
+    assert_eq!(std::fs::read_to_string(&svg).unwrap(), figure.svg);
+    assert_eq!(std::fs::read_to_string(&csv).unwrap(), figure.csv);
+    assert_eq!(svg.with_extension("csv"), csv);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
