@@ -491,6 +491,10 @@ fn check_tabulates_every_indicator_at_every_resolution() {
     }
     let text = report.to_text();
     assert!(text.contains("v_inf (m/s)") && text.contains("fixed 400"));
+    // The trend of an exact first-order sequence is 1.
+    let order = check::fitted_order(&[(10.0, 1e-2), (20.0, -5e-3), (40.0, 2.5e-3), (80.0, 0.0)]);
+    assert!((order.expect("three usable points") - 1.0).abs() < 1e-12);
+    assert!(check::fitted_order(&[(10.0, 1e-2), (20.0, 0.0), (40.0, 2.5e-3)]).is_none());
     assert!(check::validate_steps(&[]).is_err());
     assert!(check::validate_steps(&[50, 0]).is_err());
     assert!(check::check(&s, &[0]).is_err());

@@ -3,7 +3,10 @@
 
 use stickslip::Motor;
 use stickslip::plot::performance::{GridPoint, figures6_7};
-use stickslip::plot::{Figure, scaling, signals};
+use stickslip::plot::{Figure, PlotError, scaling, signals};
+
+/// A figure made from the motor alone.
+type MotorFigure = fn(&Motor) -> Result<Figure, PlotError>;
 
 /// Every data row has as many cells as the header; returns the row count.
 fn check_csv(figure: &Figure) -> usize {
@@ -20,7 +23,7 @@ fn check_csv(figure: &Figure) -> usize {
 #[test]
 fn signal_figures_are_byte_identical_and_complete() {
     let motor = Motor::default();
-    let makers: [fn(&Motor) -> Result<Figure, stickslip::plot::PlotError>; 5] = [
+    let makers: [MotorFigure; 5] = [
         signals::figure2,
         signals::figure3,
         signals::figure4,

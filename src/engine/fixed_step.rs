@@ -48,16 +48,41 @@
 //! ambiguity `mu_d < mu_0` leaves (a slider slipping with
 //! `a_f < a_req <= a_0^+` keeps slipping).
 //!
+//! A difference quotient within `tol_v / h` of the band counts as inside it
+//! (`tol_v` below), so that a rod acceleration exactly at a threshold (the
+//! ideal signal at `kappa = 1`) does not slip on rounding.
+//!
 //! **Why first order.** Between events both the slip phases (constant
 //! acceleration) and the stick phases (`v_S = v_R` at every node) are exact
-//! at the nodes; the only error is where an event falls inside a step:
-//! the whole step is given to the new mode, so the slider velocity is off by
-//! `|Delta a| theta h` (`Delta a` the jump of the slider acceleration,
-//! `theta` in `[0, 1)` the event's fraction of the step), an `O(h)` error
-//! per event, `O(h)` after a fixed number of events per period. The
-//! constant depends on where the events fall on the grid, so the error is
-//! `C(h) h` with a `C` that scatters between resolutions: a convergence
-//! order is only meaningful over several doublings.
+//! at the nodes; the error comes from the steps that hold an event, which
+//! the scheme gives wholly to the new mode. After a stick -> slip or a
+//! reversal the slider velocity is off by up to `h |Delta a|` (`Delta a`
+//! the jump of the slider's acceleration, `|a_s - a_R|` or `2 a_d`); a step
+//! that ends in stick ends exactly on the rod velocity. With a bounded
+//! number of events per period the error is `O(h)`. Its constant depends on
+//! where the events fall on the grid (the fraction of the step before the
+//! event), which moves erratically with `h`: the error is `C(h) h` with a
+//! scattering `C(h)`, and a convergence order is only meaningful as a trend
+//! over several resolutions (see `tests/fixed_step.rs`).
+//!
+//! Two consequences are worth knowing when reading fixed-step results:
+//!
+//! * **A continuum of periodic orbits in slip-slip.** Without stick, the
+//!   scheme's period map is `P_h(v) = v + h (n_f a_f + n_b a_b)` with the
+//!   integer numbers `n_f`, `n_b` of forward and backward slip steps, which
+//!   change only when an event moves to another step: its derivative is
+//!   exactly 1, and every start velocity in an interval of width about
+//!   `h |a_R - a_s|` (at the events) is a periodic orbit. The exact map
+//!   contracts through the event times, which a grid cannot move
+//!   continuously. The steady state found then depends on where the search
+//!   enters that interval, and `v_inf` is determined only to its width: at
+//!   the paper's 5000 steps per harmonic on the default scene, about
+//!   `1e-4 v_inf`.
+//! * **Reversals as one-step sticks.** A slip reversal whose zero of
+//!   `v_rel` lies late in its step can pass the stick test (`a_req` mixes
+//!   the old slip with the rod's acceleration) and is rendered as a stick
+//!   of one step followed by slip the other way: `SlipToStick` and
+//!   `StickToSlip` one node apart, and a stick time of `h` per such event.
 //!
 //! ## What it reports
 //! The same [`Segment`]s, [`Event`]s and period ends as the event engine, so
@@ -65,20 +90,27 @@
 //!
 //! * consecutive steps of equal mode are merged into one segment; a slip
 //!   segment is a true constant-acceleration piece, a stick segment follows
-//!   the nodes of the rod (its first step may start off the rod velocity, the
-//!   step in which the slider came to rest);
-//! * a mode change is an event at the node where the step in the new mode
-//!   starts, so the true event lies within one step after it (to the
-//!   accuracy of the slider velocity); a tangency of `v_rel` cannot be told
-//!   from a crossing on a grid and is reported as `SlipToStick`;
+//!   the rod at the nodes (its first step may start off the rod velocity:
+//!   the step in which the slider came to rest);
+//! * a mode change is an event at the node where the first step in the new
+//!   mode starts. For an exact slider state the true event lies within one
+//!   step of it; the first-order velocity error moves a slip -> stick
+//!   crossing by `dv / |v_rel'|`, which at a shallow crossing is more than a
+//!   step. A tangency of `v_rel` cannot be told from a crossing on a grid
+//!   and is reported as `SlipToStick`;
 //! * rod jumps are `Jump` events at their exact phase; the slider velocity
 //!   does not change, and the mode after the jump follows from the sign of
-//!   the new `v_rel` (with the zero-velocity tolerance below; a `v_rel`
-//!   within it is decided by the band `a_R` lies in right after the jump);
-//! * the period map is a step function of the start velocity (an event
-//!   moves by whole steps), so its derivative carries no information:
-//!   [`PeriodEnd::map_derivative`] is `NaN`, and
-//!   [`crate::indicators::fixed_point`] falls back to bisection.
+//!   the new `v_rel` (within the zero-velocity tolerance, from the band
+//!   `a_R` lies in right after the jump);
+//! * [`PeriodEnd::map_derivative`] is the derivative of the scheme's own
+//!   period map, exact almost everywhere: 0 if the slider stuck in the
+//!   period (its velocity was reset to the rod's at a node), else 1. The
+//!   fixed-point search ([`crate::indicators::fixed_point`]) then takes one
+//!   functional-iteration step where the map is locally constant and
+//!   bisects where it is not (a Newton step `g / (1 - 1)` is rejected);
+//! * [`PeriodEngine::last_velocity_uncertainty`] is `h sum |Delta a|` over
+//!   the period's stick -> slip transitions and reversals: the velocity
+//!   error the grid may have introduced (a bound to first order).
 //!
 //! A slider whose `|v_rel|` at a period start (or after a rod jump) is at
 //! most `tol_v = velocity_tolerance x max |v_R|` counts as resting on the

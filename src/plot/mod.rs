@@ -822,10 +822,15 @@ pub(crate) fn with_legend_on_top<'a>(
 pub(crate) fn draw_legend(area: &Area<'_>, entries: &[LegendEntry]) -> DrawResult {
     let (w, _) = area.dim_in_pixel();
     let lh = line_height(size::LEGEND);
-    for (r, row) in legend_rows(entries, w as i32 - 20).into_iter().enumerate() {
-        let total: i32 = entries[row.clone()].iter().map(entry_width).sum::<i32>()
-            + ENTRY_GAP * (row.len() as i32 - 1);
-        let mut x = (w as i32 - total) / 2;
+    let rows = legend_rows(entries, w as i32 - 20);
+    let row_width = |row: &std::ops::Range<usize>| {
+        entries[row.clone()].iter().map(entry_width).sum::<i32>()
+            + ENTRY_GAP * (row.len() as i32 - 1)
+    };
+    // One row is centred; several rows form a left-aligned, centred block.
+    let block = rows.iter().map(row_width).max().unwrap_or(0);
+    for (r, row) in rows.into_iter().enumerate() {
+        let mut x = (w as i32 - block) / 2;
         let y = 5 + r as i32 * lh + lh / 2;
         for e in &entries[row] {
             draw_legend_entry(area, e, (x, y))?;

@@ -130,19 +130,19 @@ struct Shape {
 
 const SHAPES: [Shape; 3] = [
     Shape {
-        label: "n = 2, √κ = 6, σ",
+        label: "n = 2, √κ = 6, with σ",
         kappa: 36.0,
         n: 2,
         sigma: true,
     },
     Shape {
-        label: "n = 3, κ = 1",
+        label: "n = 3, κ = 1, no σ",
         kappa: 1.0,
         n: 3,
         sigma: false,
     },
     Shape {
-        label: "n = 5, κ = 0.36, σ",
+        label: "n = 5, κ = 0.36, with σ",
         kappa: 0.36,
         n: 5,
         sigma: true,

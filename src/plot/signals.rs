@@ -133,7 +133,7 @@ pub fn figure2(motor: &Motor) -> Result<Figure, PlotError> {
         &[
             "Figure 2: ideal rod signal (11) and its Fourier partial sums (8) with coefficients (12)-(14), before stroke scaling and shift.",
             "kappa = 1, a_0 = 124 m/s^2, stroke 25 um. mode: discrete (t_1/T = 0.5) or continuous (t_1 = T). SI units.",
-            "The ideal signal jumps at t_1 (position, velocity) with infinite velocity/acceleration there; samples exclude t_1.",
+            "The ideal signal jumps at t_1 (position, velocity; infinite velocity/acceleration there): its row at t_1 holds the left limit.",
         ],
         &[
             "mode",
@@ -374,16 +374,15 @@ pub fn figure3(motor: &Motor) -> Result<Figure, PlotError> {
         }
         panels.push(p);
     }
-    let top = (0.0f64).max(
-        panels
-            .iter()
-            .flat_map(|p| {
-                p.series
-                    .iter()
-                    .flat_map(|s| s.pieces.iter().flatten().map(|q| q.1))
-            })
-            .fold(0.0, f64::max),
-    );
+    // Both panels on one y scale, up to a multiple of 0.05 above the largest.
+    let top = panels
+        .iter()
+        .flat_map(|p| {
+            p.series
+                .iter()
+                .flat_map(|s| s.pieces.iter().flatten().map(|q| q.1))
+        })
+        .fold(0.0, f64::max);
     for p in &mut panels {
         p.y.range = (0.0, (top * 1.08 / 0.05).ceil() * 0.05);
     }
