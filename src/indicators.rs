@@ -13,13 +13,18 @@
 //! * time in stick.
 //!
 //! **Steady state** is the periodic orbit of the period map
-//! `P: v_S((p-1)T) -> v_S(pT)`. `P` is non-decreasing and non-expansive
-//! (two sliders on the same rod never overtake each other, and friction
-//! only brings their velocities together), so `g(v) = P(v) - v` is
-//! non-increasing and its zero is found by safeguarded Newton in a bracket,
-//! with `P'(v)` carried exactly through the period by the engine. The
-//! transient from rest is simulated independently until its own
-//! period-to-period changes have died out; the two steady states must agree.
+//! `P: v_S((p-1)T) -> v_S(pT)`. `P` is non-decreasing (two sliders on the
+//! same rod never overtake each other), so the iterates from rest move
+//! monotonically towards the nearest fixed point in the direction `P`
+//! moves them. A zero of `g(v) = P(v) - v` is found by safeguarded Newton in
+//! a bracket `g(lo) > 0 >= g(hi)` grown from the starting guess in that
+//! direction, with `P'(v)` carried exactly through the period by the
+//! engine. `g` need not be monotone (a stuck slider can be outrun by one
+//! that slides), so a map with several fixed points may yield one the
+//! start-up does not reach: the caller checks the fixed point against the
+//! start-up ([`crate::simulation::run_with`]). The transient from rest can
+//! be simulated until its own period-to-period changes have died out (with
+//! Aitken's extrapolation); the two steady states must agree.
 //!
 //! **Start-up** `p_0.99` is the first period with `v_p >= 0.99 v_inf`
 //! (for a slider that moves backwards, `v_p <= 0.99 v_inf`).
@@ -102,6 +107,10 @@ impl StatsObserver {
 impl Observer for StatsObserver {
     fn wants_segments(&self) -> bool {
         self.wanted.smoothness || self.wanted.sliding || self.wanted.stiction
+    }
+
+    fn wants_slip_segments(&self) -> bool {
+        self.wanted.smoothness || self.wanted.sliding
     }
 
     #[inline]
@@ -269,6 +278,10 @@ pub struct AnalysisOptions {
     /// The transient stops once its estimated distance to the steady state,
     /// relative to `max |v_R|`, is below this.
     pub transient_tolerance: f64,
+    /// When set to the steady-state `v_inf`, the transient stops at the
+    /// first period with `v_p >= 0.99 v_inf` (`p_0.99`) instead of running
+    /// to convergence.
+    pub stop_at_startup: Option<f64>,
 }
 
 impl Default for AnalysisOptions {
@@ -276,6 +289,7 @@ impl Default for AnalysisOptions {
         Self {
             max_periods: 1_000_000,
             transient_tolerance: 1e-13,
+            stop_at_startup: None,
         }
     }
 }
@@ -329,6 +343,12 @@ pub fn transient<E: PeriodEngine, O: Observer>(
             velocity: end.velocity,
             mode: Some(end.mode),
         };
+        if let Some(v_inf) = options.stop_at_startup
+            && v_inf != 0.0
+            && reached_startup(v_p, v_inf)
+        {
+            break;
+        }
         if p >= 2 && change == 0.0 {
             converged = true;
             break;
@@ -376,6 +396,16 @@ pub fn transient<E: PeriodEngine, O: Observer>(
         events,
         displacement: displacement.value(),
     })
+}
+
+/// `v_p >= 0.99 v_inf`, or `<=` for a slider moving backwards.
+fn reached_startup(v_p: f64, v_inf: f64) -> bool {
+    let target = 0.99 * v_inf;
+    if v_inf > 0.0 {
+        v_p >= target
+    } else {
+        v_p <= target
+    }
 }
 
 /// A slider that slid a whole period in one direction without any event,
@@ -441,7 +471,8 @@ pub fn fixed_point<E: PeriodEngine>(
     if g0 == 0.0 {
         return Ok((guess, d0, 0, 0.0));
     }
-    // Bracket [lo, hi] with g(lo) > 0 >= g(hi); g is non-increasing.
+    // Bracket [lo, hi] with g(lo) > 0 >= g(hi), grown in the direction P
+    // moves the guess.
     let (mut lo, mut hi);
     let mut step = span;
     if g0 > 0.0 {

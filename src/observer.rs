@@ -31,6 +31,12 @@ pub trait Observer {
     fn wants_segments(&self) -> bool {
         true
     }
+
+    /// Whether slip segments are wanted (an observer of stick time needs
+    /// only stick segments); implies [`Observer::wants_segments`].
+    fn wants_slip_segments(&self) -> bool {
+        self.wants_segments()
+    }
     /// A segment of constant mode, in time order.
     fn segment(&mut self, _segment: &Segment, _signal: &Signal) {}
     /// An event, in time order, after the segment that ends at it.
@@ -49,6 +55,10 @@ impl<A: Observer, B: Observer> Observer for (A, B) {
     #[inline]
     fn wants_segments(&self) -> bool {
         self.0.wants_segments() || self.1.wants_segments()
+    }
+    #[inline]
+    fn wants_slip_segments(&self) -> bool {
+        self.0.wants_slip_segments() || self.1.wants_slip_segments()
     }
     #[inline]
     fn segment(&mut self, segment: &Segment, signal: &Signal) {
@@ -71,6 +81,10 @@ impl<O: Observer> Observer for Option<O> {
     #[inline]
     fn wants_segments(&self) -> bool {
         self.as_ref().is_some_and(O::wants_segments)
+    }
+    #[inline]
+    fn wants_slip_segments(&self) -> bool {
+        self.as_ref().is_some_and(O::wants_slip_segments)
     }
     #[inline]
     fn segment(&mut self, segment: &Segment, signal: &Signal) {
@@ -96,6 +110,10 @@ impl<O: Observer + ?Sized> Observer for &mut O {
     #[inline]
     fn wants_segments(&self) -> bool {
         (**self).wants_segments()
+    }
+    #[inline]
+    fn wants_slip_segments(&self) -> bool {
+        (**self).wants_slip_segments()
     }
     #[inline]
     fn segment(&mut self, segment: &Segment, signal: &Signal) {

@@ -109,6 +109,11 @@ pub fn to_json(r: &RunReport) -> Value {
         err.insert(indicator.name().into(), option_number(error));
     }
     m.insert("regime".into(), json!(r.regime().name()));
+    if let Some(t) = r.transient.as_ref().filter(|t| t.converged) {
+        // The cross-check of run.verify_steady_state: the start-up's own
+        // limit beside the period map's.
+        m.insert("v_inf_transient".into(), number(t.v_inf()));
+    }
     m.insert("period".into(), number(r.period));
     m.insert("f0".into(), number(1.0 / r.period));
     m.insert("f_max".into(), option_number(r.f_max));

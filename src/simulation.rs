@@ -184,19 +184,51 @@ pub fn run_with<E: PeriodEngine>(
         sliding: wants(Indicator::Durability) || wants(Indicator::FrictionEnergy),
         stiction: wants(Indicator::StictionFraction),
     };
-    let options = AnalysisOptions {
+    let mut trajectory = scene.outputs.trajectory.then(Trajectory::default);
+    let mut event_log = scene.outputs.events.then(EventLog::default);
+    let mut options = AnalysisOptions {
         max_periods: scene.run.max_periods,
         ..Default::default()
     };
-    let mut event_log = scene.outputs.events.then(EventLog::default);
-    let transient = indicators::transient(&mut engine, &options, wanted, &mut event_log)?;
-    let mut trajectory = scene.outputs.trajectory.then(Trajectory::default);
-    let steady = indicators::steady_state(
-        &mut engine,
-        transient.final_velocity,
-        wanted,
-        &mut trajectory,
-    )?;
+    // Fast path: the period map's fixed point from rest (the first period
+    // from rest moves the slider exactly as the map does from v = 0), then
+    // the start-up up to p_0.99 (or to convergence, as a cross-check).
+    // The map is monotone but may have several fixed points; the steady
+    // state is the one the start-up reaches. When the fast path cannot be
+    // trusted (the engine's map has bands of fixed points, the search from
+    // rest fails, or the start-up settles elsewhere) the start-up is run to
+    // convergence first and seeds the fixed point.
+    let fast = if engine.steady_state_from_transient() {
+        None
+    } else {
+        match indicators::steady_state(&mut engine, 0.0, wanted, &mut trajectory) {
+            Ok(steady) => {
+                options.stop_at_startup = (!scene.run.verify_steady_state).then_some(steady.v_inf);
+                let transient =
+                    indicators::transient(&mut engine, &options, wanted, &mut event_log)?;
+                let settled_elsewhere = transient.converged
+                    && (transient.v_inf() - steady.v_inf).abs() > 1e-6 * signal.velocity_scale();
+                (!settled_elsewhere).then_some((steady, transient))
+            }
+            Err(_) => None,
+        }
+    };
+    let (steady, transient) = match fast {
+        Some(found) => found,
+        None => {
+            options.stop_at_startup = None;
+            event_log = scene.outputs.events.then(EventLog::default);
+            trajectory = scene.outputs.trajectory.then(Trajectory::default);
+            let transient = indicators::transient(&mut engine, &options, wanted, &mut event_log)?;
+            let steady = indicators::steady_state(
+                &mut engine,
+                transient.final_velocity,
+                wanted,
+                &mut trajectory,
+            )?;
+            (steady, transient)
+        }
+    };
     let indicators = steady.indicators(motor, period);
     let startup_periods = transient.startup_periods(steady.v_inf);
     let power = match (&scene.actuator, &signal) {

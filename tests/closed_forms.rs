@@ -38,6 +38,7 @@ fn ideal_slip_slip_velocity_matches_the_closed_form() {
     for kappa in [1.5, 4.0, 36.0] {
         let mut scene = scene_with(ideal(kappa, 1.0));
         scene.outputs.events = true;
+        scene.run.verify_steady_state = true;
         let r = run(&scene);
         let a_r = kappa * motor.a_0();
         let t = (2.0 * 25e-6 / a_r).sqrt();
@@ -145,7 +146,8 @@ fn fundamental_frequency_of_the_paper() {
     assert_rel(s.f0(), (motor.a_0() / 50e-6).sqrt(), 1e-15, "(37)");
 }
 
-/// Transient and period-map steady states agree (MODEL.md section 3).
+/// Transient and period-map steady states agree (MODEL.md section 3), with
+/// the start-up simulated to convergence (`run.verify_steady_state`).
 #[test]
 fn transient_and_period_map_agree() {
     for spec in [
@@ -155,7 +157,8 @@ fn transient_and_period_map_agree() {
         fourier(25e-6, 20.25, 2, false),
         fourier(25e-6, 1.0, 12, true),
     ] {
-        let scene = scene_with(spec);
+        let mut scene = scene_with(spec);
+        scene.run.verify_steady_state = true;
         let r = run(&scene);
         let tr = r.transient.as_ref().unwrap();
         assert!(tr.converged, "{:?}", scene.signal);

@@ -107,9 +107,9 @@ impl Convergence {
     /// fall on the grid: nested grids (exact doublings) keep or drop an
     /// event's offset erratically, and in slip-slip every velocity within
     /// about `|a_R - a_s| h` of the true fixed point is a periodic orbit of
-    /// the scheme. A single step count's order therefore scatters (0 and 4
-    /// both occur); the order of the error's mean and of its maximum over 16
-    /// neighbouring step counts is the scheme's.
+    /// the scheme. A single doubling's order therefore scatters (from -1 to
+    /// 4.8 in `stickslip check` tables); the order of the error's mean and of
+    /// its maximum over 16 neighbouring step counts is the scheme's.
     fn assert_first_order(&self, base: u32, what: &str) {
         let levels: Vec<(f64, f64)> = (0..4).map(|j| self.errors_near(base << j)).collect();
         let order = |a: f64, b: f64| (a / b).log2() / 3.0;

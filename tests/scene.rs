@@ -723,6 +723,7 @@ proptest! {
                 engine: EngineKind::Event,
                 steps_per_harmonic: steps,
                 max_periods: periods,
+                verify_steady_state: events,
             },
         };
         // Friction accelerations mu F_c / m_s may overflow: then the scene is

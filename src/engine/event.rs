@@ -526,7 +526,7 @@ impl<'s> EventEngine<'s> {
         let dt = end - tau0;
         let x1 = x0 + v0 * dt + 0.5 * a_s * dt * dt;
         let v1 = v0 + a_s * dt;
-        if end > tau0 && observer.wants_segments() {
+        if end > tau0 && observer.wants_slip_segments() {
             let rod_start = signal.state(tau0);
             let rod_end = signal.state_before(end);
             let segment = Segment {

@@ -550,6 +550,10 @@ impl PeriodEngine for FixedStepEngine<'_> {
 
     /// The velocity error the grid introduced in the last period, `sum h
     /// |Delta a|` over its mode changes (see [`FixedStepEngine`]).
+    fn steady_state_from_transient(&self) -> bool {
+        true
+    }
+
     fn last_velocity_uncertainty(&self) -> Option<f64> {
         Some(self.last_uncertainty)
     }

@@ -274,4 +274,13 @@ pub trait PeriodEngine {
     fn last_velocity_uncertainty(&self) -> Option<f64> {
         None
     }
+
+    /// True if the engine's period map may have whole bands of fixed points
+    /// (a fixed-step map in slip-slip changes `v` by whole steps' worth of
+    /// acceleration, so its derivative is exactly 1): then the steady state
+    /// is the one the start-up from rest reaches, and the analysis runs the
+    /// start-up to convergence first and seeds the fixed point with it.
+    fn steady_state_from_transient(&self) -> bool {
+        false
+    }
 }
