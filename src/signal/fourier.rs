@@ -39,8 +39,9 @@ pub struct FourierSignal {
     /// `k^2 w^2 B_k` (acceleration) for the hot path.
     vel: Vec<(f64, f64)>,
     acc: Vec<(f64, f64)>,
-    /// Smallest and largest `v_R` over a period, found once on demand.
-    velocity_range: OnceLock<(f64, f64)>,
+    /// Phases of the roots of `a_R` (the extrema of `v_R`), found once on
+    /// demand.
+    acceleration_zeros: OnceLock<Vec<f64>>,
 }
 
 impl PartialEq for FourierSignal {
@@ -123,23 +124,39 @@ impl FourierSignal {
             sin,
             vel,
             acc,
-            velocity_range: OnceLock::new(),
+            acceleration_zeros: OnceLock::new(),
+        }
+    }
+
+    /// Phases in `[0, T)` where `a_R = level`, sorted: the roots of a
+    /// trigonometric polynomial. The roots of `a_R = 0` are kept once found.
+    pub fn acceleration_roots(&self, level: f64) -> Vec<f64> {
+        let find = || {
+            let mut poly = self.acceleration_poly();
+            poly.c0 -= level;
+            poly.roots()
+                .into_iter()
+                .map(|theta| theta / self.omega)
+                .collect::<Vec<f64>>()
+        };
+        if level == 0.0 {
+            self.acceleration_zeros.get_or_init(find).clone()
+        } else {
+            find()
         }
     }
 
     /// Smallest and largest rod velocity over a period, exact: the values at
-    /// the roots of `a_R` (computed once and kept).
+    /// the roots of `a_R`.
     pub fn velocity_range(&self) -> (f64, f64) {
-        *self.velocity_range.get_or_init(|| {
-            let mut lo = self.velocity(0.0);
-            let mut hi = lo;
-            for root in self.acceleration_poly().roots() {
-                let v = self.velocity(root / self.omega);
-                lo = lo.min(v);
-                hi = hi.max(v);
-            }
-            (lo, hi)
-        })
+        let mut lo = self.velocity(0.0);
+        let mut hi = lo;
+        for tau in self.acceleration_roots(0.0) {
+            let v = self.velocity(tau);
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+        (lo, hi)
     }
 
     /// The first `n` harmonics of the ideal signal of `shape`, with sigma
@@ -309,12 +326,7 @@ impl FourierSignal {
     /// between the roots of `a_R`, one bracketed root per piece.
     pub fn velocity_median(&self) -> f64 {
         let mut knots = vec![0.0];
-        knots.extend(
-            self.acceleration_poly()
-                .roots()
-                .into_iter()
-                .map(|r| r / self.omega),
-        );
+        knots.extend(self.acceleration_roots(0.0));
         knots.push(self.period);
         let tol = 4.0 * f64::EPSILON * self.period;
         let time_above = |m: f64| -> f64 {

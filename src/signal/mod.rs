@@ -22,11 +22,9 @@ pub mod fourier;
 pub mod harmonics;
 pub mod ideal;
 
-use crate::engine::trig_roots::TrigPoly;
 use crate::error::ParamError;
 use crate::motor::Motor;
 use std::cmp::Ordering;
-use std::f64::consts::PI;
 
 pub use fourier::FourierSignal;
 pub use ideal::IdealSignal;
@@ -448,10 +446,7 @@ impl Signal {
                 })
             }
             Signal::Fourier(s) => {
-                let mut poly: TrigPoly = s.acceleration_poly();
-                poly.c0 -= level;
-                let omega = 2.0 * PI / period;
-                let roots: Vec<f64> = poly.roots().into_iter().map(|th| th / omega).collect();
+                let roots = s.acceleration_roots(level);
                 Partition::from_roots(level, period, &roots, &[], |tau| {
                     s.acceleration(tau).total_cmp(&level)
                 })
