@@ -44,6 +44,8 @@ pub struct StatsWanted {
     pub sliding: bool,
     /// Time in stick.
     pub stiction: bool,
+    /// Time sliding (needs slip segments).
+    pub slip_time: bool,
 }
 
 impl StatsWanted {
@@ -52,6 +54,7 @@ impl StatsWanted {
         smoothness: true,
         sliding: true,
         stiction: true,
+        slip_time: true,
     };
 }
 
@@ -68,6 +71,8 @@ pub struct PeriodStats {
     pub sliding_distance: f64,
     /// Time in stick (s), if asked.
     pub stick_time: f64,
+    /// Time sliding (s), if stick time was asked.
+    pub slip_time: f64,
     /// Events in the period.
     pub events: EventCounts,
 }
@@ -106,11 +111,14 @@ impl StatsObserver {
 
 impl Observer for StatsObserver {
     fn wants_segments(&self) -> bool {
-        self.wanted.smoothness || self.wanted.sliding || self.wanted.stiction
+        self.wanted.smoothness
+            || self.wanted.sliding
+            || self.wanted.stiction
+            || self.wanted.slip_time
     }
 
     fn wants_slip_segments(&self) -> bool {
-        self.wanted.smoothness || self.wanted.sliding
+        self.wanted.smoothness || self.wanted.sliding || self.wanted.slip_time
     }
 
     #[inline]
@@ -119,8 +127,12 @@ impl Observer for StatsObserver {
         if self.wanted.sliding {
             c.sliding_distance += segment.sliding_distance();
         }
-        if self.wanted.stiction && segment.mode == Mode::Stick {
-            c.stick_time += segment.duration();
+        if self.wanted.stiction {
+            if segment.mode == Mode::Stick {
+                c.stick_time += segment.duration();
+            } else {
+                c.slip_time += segment.duration();
+            }
         }
         if self.wanted.smoothness {
             for v in [segment.slider_start.v, segment.slider_end.v] {
@@ -353,7 +365,8 @@ pub fn transient<E: PeriodEngine, O: Observer>(
             converged = true;
             break;
         }
-        runaway(&end, stats.last.events.total(), change, (lo_r, hi_r), p)?;
+        let ev = &stats.last.events;
+        runaway(&end, ev.total() - ev.jump, change, (lo_r, hi_r), p)?;
         if let Some(before) = last_change {
             // Geometric tail: remaining distance ~ |change| rho / (1 - rho).
             let rho = (change / before).abs();
@@ -408,8 +421,10 @@ fn reached_startup(v_p: f64, v_inf: f64) -> bool {
     }
 }
 
-/// A slider that slid a whole period in one direction without any event,
-/// ends outside the rod's velocity range and moved further away cannot
+/// A slider that slid a whole period in one direction without any event
+/// (rod jumps aside: the slider's velocity is outside the rod's range on
+/// both sides of one), ends outside the rod's velocity range and moved
+/// further away cannot
 /// come back: `v_rel` never reaches zero again and its acceleration is
 /// constant. This is a run-away (the extra acceleration `g_t` exceeds what
 /// sliding friction `a_d` can hold), reported instead of simulated forever.
@@ -450,6 +465,22 @@ fn period_map<E: PeriodEngine>(engine: &mut E, v: f64) -> Result<(f64, f64), Sim
         &mut (),
     )?;
     Ok((end.velocity, end.map_derivative))
+}
+
+/// True if the period map moves `v` towards `target` (or `v` is it): a
+/// necessary condition for iterates through `v` to converge to `target`
+/// (`P` is monotone, so a fixed point between `v` and `target` would stop
+/// them, and `P(v)` on the far side of `v` reveals one).
+pub fn moves_towards<E: PeriodEngine>(
+    engine: &mut E,
+    v: f64,
+    target: f64,
+) -> Result<bool, SimulationError> {
+    if v == target {
+        return Ok(true);
+    }
+    let (p, _) = period_map(engine, v)?;
+    Ok(if v < target { p > v } else { p < v })
 }
 
 /// Largest number of bracket expansions before the search gives up and
@@ -557,18 +588,39 @@ pub fn steady_state<E: PeriodEngine, O: Observer>(
     observer: &mut O,
 ) -> Result<SteadyState, SimulationError> {
     let (v_star, map_derivative, iterations, last_correction) = fixed_point(engine, guess)?;
-    let mut stats = StatsObserver::new(engine.signal(), wanted);
-    let end = engine.run_period(
+    // One unobserved period gives the mode the orbit has at its period
+    // boundary, so that the observed period reports the transition at
+    // phase 0 like every other.
+    let before = engine.run_period(
         2,
         PeriodStart {
             velocity: v_star,
             mode: None,
         },
+        &mut (),
+    )?;
+    // The regime and the error estimate need the stick and slip times and
+    // the sliding distance of this one period, whatever else is wanted.
+    let mut stats = StatsObserver::new(
+        engine.signal(),
+        StatsWanted {
+            stiction: true,
+            slip_time: true,
+            sliding: true,
+            ..wanted
+        },
+    );
+    let end = engine.run_period(
+        2,
+        PeriodStart {
+            velocity: before.velocity,
+            mode: Some(before.mode),
+        },
         &mut (&mut stats, observer),
     )?;
     let period = engine.signal().period();
     Ok(SteadyState {
-        boundary_velocity: v_star,
+        boundary_velocity: before.velocity,
         map_derivative,
         v_inf: end.step / period,
         stats: stats.last,
@@ -601,10 +653,13 @@ impl SteadyState {
         let wear_force = motor.contact_force() * s.sliding_distance;
         SteadyIndicators {
             v_inf: self.v_inf,
+            // 0/0 (no motion at all) is undefined, reported as none.
             smoothness: if spread > 0.0 {
                 self.v_inf.abs() / spread
-            } else {
+            } else if self.v_inf != 0.0 {
                 f64::INFINITY
+            } else {
+                f64::NAN
             },
             durability: if wear_force > 0.0 {
                 s.step / wear_force

@@ -170,6 +170,16 @@ pub fn to_json(r: &RunReport) -> Value {
     Value::Object(m)
 }
 
+/// An indicator with its estimate; without one (no bound holds, e.g. a
+/// grazing steady orbit) it says so instead of implying exact digits.
+fn with_estimate(value: f64, err: Option<f64>) -> String {
+    match err {
+        Some(_) => format_with_error(value, err),
+        None if value.is_finite() => format!("{} ± unknown", format_with_error(value, None)),
+        None => format_with_error(value, None),
+    }
+}
+
 /// A readable summary.
 pub fn to_text(r: &RunReport) -> String {
     let mut out = String::new();
@@ -191,19 +201,14 @@ pub fn to_text(r: &RunReport) -> String {
     let _ = writeln!(out, "indicators (± estimated absolute error):");
     for indicator in &r.requested {
         match indicator {
-            Indicator::VInf => line(
-                &mut out,
-                "v_inf",
-                format_with_error(ind.v_inf, e.v_inf),
-                "m/s",
-            ),
+            Indicator::VInf => line(&mut out, "v_inf", with_estimate(ind.v_inf, e.v_inf), "m/s"),
             Indicator::StartupTime => match (r.startup_time(), r.startup_periods) {
                 (Some(t), Some(p)) => line(
                     &mut out,
                     "startup_time",
                     format!(
                         "{} s = {p} period{}",
-                        format_with_error(t, e.startup_time),
+                        with_estimate(t, e.startup_time),
                         if p == 1 { "" } else { "s" }
                     ),
                     "",
@@ -213,26 +218,26 @@ pub fn to_text(r: &RunReport) -> String {
             Indicator::Smoothness => line(
                 &mut out,
                 "smoothness",
-                format_with_error(ind.smoothness, e.smoothness),
+                with_estimate(ind.smoothness, e.smoothness),
                 "",
             ),
             Indicator::Durability => line(
                 &mut out,
                 "durability",
-                format_with_error(ind.durability, e.durability),
+                with_estimate(ind.durability, e.durability),
                 "1/N",
             ),
             Indicator::FrictionEnergy => line(
                 &mut out,
                 "friction_energy",
-                format_with_error(ind.friction_energy, e.friction_energy),
+                with_estimate(ind.friction_energy, e.friction_energy),
                 "J/period",
             ),
             Indicator::StictionFraction => {
                 line(
                     &mut out,
                     "stiction_fraction",
-                    format_with_error(
+                    with_estimate(
                         r.stiction_fraction_transient.unwrap_or(f64::NAN),
                         e.stiction_fraction,
                     ),
@@ -241,7 +246,7 @@ pub fn to_text(r: &RunReport) -> String {
                 line(
                     &mut out,
                     "  in steady state",
-                    format_with_error(ind.stiction_fraction, e.stiction_fraction),
+                    with_estimate(ind.stiction_fraction, e.stiction_fraction),
                     "(of a period)",
                 );
             }
@@ -257,7 +262,7 @@ pub fn to_text(r: &RunReport) -> String {
                 line(
                     &mut out,
                     "velocity_per_power",
-                    format_with_error(
+                    with_estimate(
                         r.velocity_per_power().unwrap_or(f64::NAN),
                         e.velocity_per_power,
                     ),

@@ -63,8 +63,6 @@ pub struct RunReport {
     pub work: WorkCounters,
     /// Wall time of the simulation (not of parsing or output).
     pub wall_time: Duration,
-    /// Rod velocity at the start of a period (right limit at phase 0).
-    pub steady_start_rod_velocity: f64,
     /// The event log of the transient, if asked.
     pub event_log: Option<Vec<Event>>,
     /// The steady-state period's segments, if asked.
@@ -96,23 +94,14 @@ impl Regime {
 }
 
 impl RunReport {
-    /// The steady-state mode of operation, from the steady period's events
-    /// (a period without events is stuck if the slider was stuck at the
-    /// start of the period, else it slides throughout).
+    /// The steady-state mode of operation, from the steady period's time in
+    /// stick and time sliding.
     pub fn regime(&self) -> Regime {
-        let ev = &self.steady.stats.events;
-        if ev.total() == 0 {
-            let v_rod = self.steady_start_rod_velocity;
-            return if self.steady.boundary_velocity == v_rod {
-                Regime::Stuck
-            } else {
-                Regime::SlipSlip
-            };
-        }
-        if ev.stick_to_slip + ev.slip_to_stick + ev.grazing > 0 {
-            Regime::StickSlip
-        } else {
-            Regime::SlipSlip
+        let stats = &self.steady.stats;
+        match (stats.stick_time > 0.0, stats.slip_time > 0.0) {
+            (_, false) => Regime::Stuck,
+            (true, true) => Regime::StickSlip,
+            (false, true) => Regime::SlipSlip,
         }
     }
 
@@ -183,6 +172,7 @@ pub fn run_with<E: PeriodEngine>(
         smoothness: wants(Indicator::Smoothness),
         sliding: wants(Indicator::Durability) || wants(Indicator::FrictionEnergy),
         stiction: wants(Indicator::StictionFraction),
+        slip_time: false,
     };
     let mut trajectory = scene.outputs.trajectory.then(Trajectory::default);
     let mut event_log = scene.outputs.events.then(EventLog::default);
@@ -241,14 +231,7 @@ pub fn run_with<E: PeriodEngine>(
     let stiction_fraction_transient = wanted
         .stiction
         .then(|| transient.stick_time / (transient.periods() as f64 * period));
-    let mut error = estimate_errors(
-        &signal,
-        &steady,
-        &transient,
-        &indicators,
-        startup_periods,
-        motor.contact_force(),
-    );
+    let mut error = estimate_errors(&signal, &steady, &transient, &indicators, startup_periods);
     if let Some(p) = &power {
         // S (35) is a closed form of the signal: only v_inf carries error.
         error.velocity_per_power = error.v_inf.map(|dv| dv / p.apparent_power);
@@ -264,7 +247,6 @@ pub fn run_with<E: PeriodEngine>(
         error,
         work: engine.counters(),
         wall_time,
-        steady_start_rod_velocity: signal.velocity(0.0),
         event_log: event_log.map(|l| l.events),
         trajectory: trajectory.map(|t| t.segments),
         transient: Some(transient),
@@ -290,30 +272,41 @@ fn estimate_errors(
     transient: &Transient,
     ind: &SteadyIndicators,
     startup_periods: Option<u64>,
-    contact_force: f64,
 ) -> ErrorEstimate {
     let period = signal.period();
     let v_scale = signal.velocity_scale();
-    let segments = steady.stats.events.total() as f64 + 2.0;
+    let stats = &steady.stats;
+    let segments = stats.events.total() as f64 + 2.0;
+    // Relative rounding of a sum over the period's segments.
+    let rounding_rel = 16.0 * f64::EPSILON * segments;
     let rounding_v = 8.0 * f64::EPSILON * segments * v_scale;
-    let rounding_x = 8.0 * f64::EPSILON * segments * (v_scale * period + steady.stats.step.abs());
-    let dv = match steady.velocity_uncertainty {
-        Some(u) => {
-            let contraction = (1.0 - steady.map_derivative).max(1e-3);
-            (u + rounding_v) / contraction + u + rounding_v + rounding_x / period
+    let rounding_x = 8.0 * f64::EPSILON * segments * (signal.position_scale() + stats.step.abs());
+    // A velocity error moves the slider only while it slides: in stick it
+    // follows the rod whatever its velocity was before.
+    let slip_fraction = (stats.slip_time / period).clamp(0.0, 1.0);
+    // Bound on the slider velocity error along the orbit, if one exists.
+    let velocity_error = match steady.velocity_uncertainty {
+        Some(u) if u.is_finite() => {
+            let contraction = 1.0 - steady.map_derivative;
+            (contraction > 0.0).then(|| (u + rounding_v) / contraction + u + rounding_v)
         }
-        None => {
+        // A grazing in the steady orbit: the motion depends discontinuously
+        // on the data there, so no bound holds.
+        Some(_) => None,
+        None => Some(
             (transient.v_inf() - steady.v_inf)
                 .abs()
                 .max(steady.last_correction)
-                + rounding_v
-                + rounding_x / period
-        }
+                + rounding_v,
+        ),
     };
-    // Relative rounding of a sum over the period's segments.
-    let rounding_rel = 16.0 * f64::EPSILON * segments;
-    let spread = steady.stats.v_max - steady.stats.v_min;
-    let sliding = steady.stats.sliding_distance;
+    let Some(dvel) = velocity_error else {
+        return ErrorEstimate::default();
+    };
+    let dv = dvel * slip_fraction + rounding_x / period;
+    let spread = stats.v_max - stats.v_min;
+    let sliding = stats.sliding_distance;
+    let d_sliding = dvel * stats.slip_time + rounding_x;
     let startup = startup_periods.map(|p| {
         let threshold = 0.99 * steady.v_inf;
         let near = transient
@@ -326,18 +319,22 @@ fn estimate_errors(
     ErrorEstimate {
         v_inf: Some(dv),
         startup_time: startup,
-        // zeta = |v_inf| / spread: the v_inf error over the spread, plus
-        // rounding of the spread.
+        // zeta = |v_inf| / spread; the spread's ends carry the velocity error.
         smoothness: ind
             .smoothness
             .is_finite()
-            .then(|| dv / spread + ind.smoothness * rounding_rel),
+            .then(|| dv / spread + ind.smoothness * (2.0 * dvel / spread + rounding_rel)),
         // delta = x_p / (F_c s) with x_p = v_inf T.
-        durability: ind
-            .durability
-            .is_finite()
-            .then(|| dv * period / (contact_force * sliding) + ind.durability.abs() * rounding_rel),
-        friction_energy: Some(ind.friction_energy * rounding_rel),
+        durability: ind.durability.is_finite().then(|| {
+            ind.durability.abs()
+                * (dv * period / stats.step.abs() + d_sliding / sliding + rounding_rel)
+        }),
+        // W_f = mu_d F_c s.
+        friction_energy: Some(if sliding > 0.0 {
+            ind.friction_energy * (d_sliding / sliding + rounding_rel)
+        } else {
+            0.0
+        }),
         stiction_fraction: Some(rounding_rel),
         velocity_per_power: None,
     }

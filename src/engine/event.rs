@@ -571,8 +571,7 @@ impl<'s> EventEngine<'s> {
                 };
                 // An event time off by dt leaves the slider with the old
                 // acceleration for dt too long or too short: its velocity is
-                // off by |a_old - a_new| dt. A grazing decision may move the
-                // velocity by up to tol_v.
+                // off by |a_old - a_new| dt.
                 walk.uncertainty += (a_s - a_new).abs() * time_error;
                 match mode {
                     Mode::Stick => {
@@ -591,7 +590,10 @@ impl<'s> EventEngine<'s> {
                     }
                 }
                 if grazing {
-                    walk.uncertainty += self.tol_v;
+                    // Sticking or sliding on is decided within tol_v: the
+                    // two outcomes differ by a finite amount, so no bound on
+                    // the velocity error holds through a grazing.
+                    walk.uncertainty = f64::INFINITY;
                 }
                 let kind =
                     transition(old, mode, grazing).unwrap_or(EventKind::Grazing { then: mode });

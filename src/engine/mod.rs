@@ -270,7 +270,8 @@ pub trait PeriodEngine {
 
     /// A bound on the slider velocity error the last simulated period
     /// introduced through the engine's tolerances (m/s), when the engine
-    /// can state one.
+    /// can state one; infinite when the period held a decision no bound
+    /// survives (a grazing).
     fn last_velocity_uncertainty(&self) -> Option<f64> {
         None
     }

@@ -78,7 +78,8 @@ pub fn sigma_factor(k: usize, n: usize) -> f64 {
 /// returns `(a_0 / 2, [a_k], [b_k])` for `k = 1..=n`, where `a_k` multiplies
 /// `cos(k w_0 t)` and `b_k` multiplies `sin(k w_0 t)`.
 pub fn ideal_coefficients(a_r: f64, t1: f64, period: f64, n: usize) -> (f64, Vec<f64>, Vec<f64>) {
-    let offset = a_r * t1.powi(3) / (3.0 * period) / 2.0;
+    // a_R t_1^3 / (6 T), ordered so that no intermediate overflows.
+    let offset = a_r * t1 * t1 * (t1 / period) / 6.0;
     let mut a = Vec::with_capacity(n);
     let mut b = Vec::with_capacity(n);
     for k in 1..=n {
@@ -234,6 +235,11 @@ impl FourierSignal {
     /// Cosine and sine coefficients `(A_k, B_k)`.
     pub fn coefficients(&self) -> (&[f64], &[f64]) {
         (&self.cos, &self.sin)
+    }
+
+    /// `sum_k (k w_0)^2 d_k`, a bound on `|a_R|` (m/s^2).
+    pub fn acceleration_bound(&self) -> f64 {
+        self.acc.iter().map(|(a, b)| a.hypot(*b)).sum()
     }
 
     /// Position at phase `tau` (m).

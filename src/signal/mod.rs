@@ -298,28 +298,59 @@ impl Signal {
                 });
             }
         }
-        match spec {
-            SignalSpec::Ideal(shape) => Ok(Signal::Ideal(IdealSignal::new(*shape, motor))),
+        let signal = match spec {
+            SignalSpec::Ideal(shape) => Signal::Ideal(IdealSignal::new(*shape, motor)),
             SignalSpec::Fourier {
                 shape,
                 harmonics,
                 sigma,
-            } => Ok(Signal::Fourier(FourierSignal::approximate_ideal(
+            } => Signal::Fourier(FourierSignal::approximate_ideal(
                 *shape, *harmonics, *sigma, motor,
-            )?)),
+            )?),
             SignalSpec::Harmonics {
                 frequency,
                 amplitudes,
                 phases,
                 scale_to_stroke,
                 shift_to_minimum,
-            } => Ok(Signal::Fourier(harmonics::build(
+            } => Signal::Fourier(harmonics::build(
                 *frequency,
                 amplitudes,
                 phases,
                 *scale_to_stroke,
                 *shift_to_minimum,
-            )?)),
+            )?),
+        };
+        // Position, velocity and acceleration must be representable.
+        let scale = signal.velocity_scale() * signal.period();
+        let (_, a_max) = signal.acceleration_bound();
+        if !(scale.is_finite() && a_max.is_finite() && signal.period().is_finite()) {
+            return Err(ParamError::Inconsistent {
+                field: "signal".to_owned(),
+                reason: format!(
+                    "the rod acceleration (up to {a_max:e} m/s^2) or velocity is not \
+                     representable in double precision; choose a lower frequency or amplitude"
+                ),
+            });
+        }
+        Ok(signal)
+    }
+
+    /// A bound on `|a_R|` over a period: `(0, sum k^2 w^2 d_k)` for a
+    /// series, `(0, |a_R|)` for the ideal signal.
+    pub fn acceleration_bound(&self) -> (f64, f64) {
+        match self {
+            Signal::Ideal(s) => (0.0, s.a_r().abs()),
+            Signal::Fourier(s) => (0.0, s.acceleration_bound()),
+        }
+    }
+
+    /// A position scale for rounding bounds: the stroke of the ideal
+    /// signal, `max |v_R| T / pi` for a series (the stroke of one harmonic).
+    pub fn position_scale(&self) -> f64 {
+        match self {
+            Signal::Ideal(s) => 0.5 * s.a_r().abs() * s.t1() * s.t1(),
+            Signal::Fourier(_) => self.velocity_scale() * self.period() / std::f64::consts::PI,
         }
     }
 
