@@ -193,6 +193,8 @@ pub struct SteadyState {
     /// Bound on the velocity error one steady-state period introduces
     /// through the engine's tolerances (m/s), if the engine states one.
     pub velocity_uncertainty: Option<f64>,
+    /// Bound on the error of each event time (s).
+    pub event_time_uncertainty: f64,
 }
 
 /// The start-up from rest.
@@ -627,6 +629,7 @@ pub fn steady_state<E: PeriodEngine, O: Observer>(
         iterations,
         last_correction,
         velocity_uncertainty: engine.last_velocity_uncertainty(),
+        event_time_uncertainty: engine.event_time_uncertainty(),
     })
 }
 

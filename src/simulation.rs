@@ -335,7 +335,15 @@ fn estimate_errors(
         } else {
             0.0
         }),
-        stiction_fraction: Some(rounding_rel),
+        // Every start or end of a stick phase may be off by the engine's
+        // event-time uncertainty.
+        stiction_fraction: Some(
+            rounding_rel
+                + (stats.events.stick_to_slip + stats.events.slip_to_stick + stats.events.jump)
+                    as f64
+                    * steady.event_time_uncertainty
+                    / period,
+        ),
         velocity_per_power: None,
     }
 }

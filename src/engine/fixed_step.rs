@@ -557,4 +557,9 @@ impl PeriodEngine for FixedStepEngine<'_> {
     fn last_velocity_uncertainty(&self) -> Option<f64> {
         Some(self.last_uncertainty)
     }
+
+    /// An event is detected at the end of the step that holds it.
+    fn event_time_uncertainty(&self) -> f64 {
+        self.signal().period() / self.steps_per_period() as f64
+    }
 }

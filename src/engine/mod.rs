@@ -276,6 +276,13 @@ pub trait PeriodEngine {
         None
     }
 
+    /// A bound on how far the engine may place an event from its true time
+    /// (s): the step of a fixed-step engine, a few ulps of the period for
+    /// the event engine.
+    fn event_time_uncertainty(&self) -> f64 {
+        4.0 * f64::EPSILON * self.signal().period()
+    }
+
     /// True if the engine's period map may have whole bands of fixed points
     /// (a fixed-step map in slip-slip changes `v` by whole steps' worth of
     /// acceleration, so its derivative is exactly 1): then the steady state

@@ -80,15 +80,10 @@ impl Figure {
 }
 
 fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), PlotError> {
-    let io = |source| PlotError::Io {
+    crate::output::write_atomically(path, bytes).map_err(|source| PlotError::Io {
         path: path.display().to_string(),
         source,
-    };
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".tmp");
-    let tmp = PathBuf::from(tmp);
-    std::fs::write(&tmp, bytes).map_err(io)?;
-    std::fs::rename(&tmp, path).map_err(io)
+    })
 }
 
 /// What can go wrong while making a figure.
