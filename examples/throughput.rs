@@ -8,7 +8,7 @@ use std::time::Instant;
 use stickslip::engine::PeriodEngine;
 use stickslip::engine::PeriodStart;
 use stickslip::engine::event::{EventEngine, EventOptions};
-use stickslip::signal::{IdealShape, SignalSpec};
+use stickslip::signal::SignalSpec;
 use stickslip::{Motor, Scene, Signal, simulation};
 
 fn median(mut xs: Vec<f64>) -> f64 {
@@ -63,15 +63,7 @@ fn main() {
         (5, 0.36, true),
         (12, 1.0, true),
     ] {
-        let spec = SignalSpec::Fourier {
-            shape: IdealShape {
-                stroke: 25e-6,
-                kappa,
-                duty: 1.0,
-            },
-            harmonics: n,
-            sigma,
-        };
+        let spec = SignalSpec::fourier(25e-6, kappa, n, sigma);
         let signal = Signal::build(&spec, &motor).expect("valid signal");
         let mut rates = Vec::new();
         let mut count = 0;

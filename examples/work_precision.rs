@@ -40,7 +40,7 @@ use std::time::Instant;
 use stickslip::engine::PeriodEngine;
 use stickslip::engine::event::{EventEngine, EventOptions};
 use stickslip::engine::fixed_step::{FixedStepEngine, FixedStepOptions};
-use stickslip::signal::{IdealShape, SignalSpec};
+use stickslip::signal::SignalSpec;
 use stickslip::simulation::{self, RunReport};
 use stickslip::{Motor, Scene, Signal};
 
@@ -62,15 +62,7 @@ struct Case {
 }
 
 fn cases() -> Vec<Case> {
-    let fourier = |kappa: f64, n: usize| SignalSpec::Fourier {
-        shape: IdealShape {
-            stroke: 25e-6,
-            kappa,
-            duty: 1.0,
-        },
-        harmonics: n,
-        sigma: true,
-    };
+    let fourier = |kappa: f64, n: usize| SignalSpec::fourier(25e-6, kappa, n, true);
     let with = |spec| Scene {
         signal: spec,
         ..Scene::default()

@@ -18,15 +18,7 @@ use stickslip::signal::{IdealShape, SignalSpec};
 use stickslip::{Motor, Scene, Signal, simulation};
 
 fn fourier(kappa: f64, n: usize) -> SignalSpec {
-    SignalSpec::Fourier {
-        shape: IdealShape {
-            stroke: 25e-6,
-            kappa,
-            duty: 1.0,
-        },
-        harmonics: n,
-        sigma: true,
-    }
+    SignalSpec::fourier(25e-6, kappa, n, true)
 }
 
 fn ideal(kappa: f64, duty: f64) -> SignalSpec {

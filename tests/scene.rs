@@ -121,18 +121,7 @@ fn scene_default_is_the_papers_example() {
     // MODEL.md section 6 and the paper's section 7 headline case.
     let scene = Scene::default();
     assert_eq!(scene.motor, MotorParams::default());
-    assert_eq!(
-        scene.signal,
-        SignalSpec::Fourier {
-            shape: IdealShape {
-                stroke: 25e-6,
-                kappa: 36.0,
-                duty: 1.0
-            },
-            harmonics: 2,
-            sigma: true,
-        }
-    );
+    assert_eq!(scene.signal, SignalSpec::fourier(25e-6, 36.0, 2, true));
     assert_eq!(scene.actuator, Some(ActuatorParams::default()));
     assert_eq!(scene.run.engine, EngineKind::Event);
     assert_eq!(scene.run.steps_per_harmonic, 5000);

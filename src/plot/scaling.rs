@@ -18,7 +18,7 @@ use super::{
 };
 use crate::motor::Motor;
 use crate::scene::Scene;
-use crate::signal::{IdealShape, SignalSpec};
+use crate::signal::SignalSpec;
 use crate::simulation;
 use plotters::style::text_anchor::{HPos, VPos};
 use rayon::prelude::*;
@@ -165,15 +165,7 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
         .map(|&(s, stroke)| {
             let shape = &SHAPES[s];
             let mut scene = base.clone();
-            scene.signal = SignalSpec::Fourier {
-                shape: IdealShape {
-                    stroke,
-                    kappa: shape.kappa,
-                    duty: 1.0,
-                },
-                harmonics: shape.n,
-                sigma: shape.sigma,
-            };
+            scene.signal = SignalSpec::fourier(stroke, shape.kappa, shape.n, shape.sigma);
             scene.actuator = None;
             scene.outputs.indicators = vec![
                 crate::scene::Indicator::VInf,

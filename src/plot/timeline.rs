@@ -24,7 +24,7 @@ use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::{Direction, EventKind, Mode, PeriodEngine, PeriodStart, Segment};
 use crate::observer::Observer;
 use crate::scene::Scene;
-use crate::signal::{IdealShape, Signal, SignalSpec};
+use crate::signal::{Signal, SignalSpec};
 use crate::simulation;
 use plotters::prelude::RGBColor;
 
@@ -120,15 +120,7 @@ fn simulate(
 }
 
 fn fourier(kappa: f64, n: usize, sigma: bool) -> SignalSpec {
-    SignalSpec::Fourier {
-        shape: IdealShape {
-            stroke: 25e-6,
-            kappa,
-            duty: 1.0,
-        },
-        harmonics: n,
-        sigma,
-    }
+    SignalSpec::fourier(25e-6, kappa, n, sigma)
 }
 
 /// The event timeline figure for the base scene's motor.

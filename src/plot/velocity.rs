@@ -16,7 +16,7 @@ use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::{Mode, PeriodEngine, PeriodStart, Segment};
 use crate::observer::Trajectory;
 use crate::scene::Scene;
-use crate::signal::{IdealShape, Signal, SignalSpec};
+use crate::signal::{Signal, SignalSpec};
 use crate::simulation;
 
 /// A sample of the exact motion, for drawing.
@@ -85,15 +85,7 @@ pub fn figure8(base: &Scene) -> Result<Figure, PlotError> {
     const NAME: &str = "fig8_rod_slider_velocity";
     let sqrt_kappa = 1.0;
     let mut scene = base.clone();
-    scene.signal = SignalSpec::Fourier {
-        shape: IdealShape {
-            stroke: 25e-6,
-            kappa: sqrt_kappa * sqrt_kappa,
-            duty: 1.0,
-        },
-        harmonics: 2,
-        sigma: false,
-    };
+    scene.signal = SignalSpec::fourier(25e-6, sqrt_kappa * sqrt_kappa, 2, false);
     scene.outputs.trajectory = true;
     let sim = PlotError::simulation(NAME);
     let (signal, motor) = simulation::build(&scene).map_err(sim)?;
