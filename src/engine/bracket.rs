@@ -7,13 +7,18 @@
 //! `|f(t)| <= f_tol` (the caller's noise level of `f`: below it the sign of
 //! `f` carries no information, so the root is known as well as `f` allows)
 //! or the true root lies within `tol` of `t`, where `tol` is the caller's
-//! absolute tolerance in `t`. It always terminates: the bracket at
-//! least halves every two iterations, and after [`MAX_ITERATIONS`] the
-//! midpoint of the remaining bracket is returned. For a linear function (the
-//! relative velocity under the ideal signal) the first secant step is exact.
+//! absolute tolerance in `t`. It always terminates: every step either
+//! halves the bracket (bisection) or is a Newton step at most half as long
+//! as the step before the last, so the steps shrink geometrically; the
+//! iteration stops when a step is below `tol`, and after
+//! [`MAX_ITERATIONS`] at the latest (returning the midpoint of the
+//! remaining bracket). The bracket itself need not shrink when Newton
+//! converges from one side. For a linear function (the relative velocity
+//! under the ideal signal) the first secant step is exact.
 
-/// Hard limit on iterations; with a bracket that halves at least every two
-/// iterations, 2 x 64 iterations exhaust a double's precision.
+/// Hard limit on iterations: steps that shrink at least by half every two
+/// iterations fall below any tolerance above a double's resolution well
+/// within 2 x 64 iterations.
 pub const MAX_ITERATIONS: u32 = 128;
 
 /// A root and what it cost.
