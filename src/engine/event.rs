@@ -117,10 +117,11 @@ pub struct EventEngine<'s> {
     tol_x: f64,
     tol_t: f64,
     tol_f: f64,
-    /// The last root found on each piece: events recur at nearly the same
-    /// phase every period, so it is the best first iterate.
-    hints_forward: Vec<f64>,
-    hints_backward: Vec<f64>,
+    /// The last two roots found on each piece: events recur at nearly the
+    /// same phase every period, drifting smoothly while the motion settles,
+    /// so their linear extrapolation is the best first iterate.
+    hints_forward: Vec<[f64; 2]>,
+    hints_backward: Vec<[f64; 2]>,
     max_events: u64,
     /// Rod state at phase 0 (right limit) and at the period end (left limit).
     rod_at_start: RodState,
@@ -175,8 +176,8 @@ impl<'s> EventEngine<'s> {
         Self {
             signal,
             period,
-            hints_forward: vec![f64::NAN; fwd.pieces.len()],
-            hints_backward: vec![f64::NAN; bwd.pieces.len()],
+            hints_forward: vec![[f64::NAN; 2]; fwd.pieces.len()],
+            hints_backward: vec![[f64::NAN; 2]; bwd.pieces.len()],
             slip_forward: (fwd, a_fwd),
             slip_backward: (bwd, a_bwd),
             band,
@@ -500,9 +501,9 @@ impl<'s> EventEngine<'s> {
                         (f_lo, f_end),
                         self.tol_t,
                         self.tol_f,
-                        hints[j].is_finite().then_some(hints[j]),
+                        extrapolate(hints[j]),
                     );
-                    hints[j] = root.t;
+                    hints[j] = [hints[j][1], root.t];
                     iterations += u64::from(root.iterations);
                     evaluations += u64::from(root.iterations);
                     break SlipEnd::Crossing(root.t, root.bracket);
@@ -600,6 +601,16 @@ impl<'s> EventEngine<'s> {
                 self.emit(walk, kind, observer)
             }
         }
+    }
+}
+
+/// The first iterate from the last two roots on a piece: their linear
+/// extrapolation, or the last root alone.
+fn extrapolate([before, last]: [f64; 2]) -> Option<f64> {
+    match (before.is_finite(), last.is_finite()) {
+        (true, true) => Some(2.0 * last - before),
+        (_, true) => Some(last),
+        _ => None,
     }
 }
 
