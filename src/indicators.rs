@@ -190,6 +190,9 @@ pub struct SteadyState {
     pub iterations: u32,
     /// Size of the last fixed-point correction (m/s).
     pub last_correction: f64,
+    /// `|P(v*) - v*|` at the fixed point found (m/s): zero to rounding
+    /// unless event-time tolerances make `P` ragged.
+    pub residual: f64,
     /// Bound on the velocity error one steady-state period introduces
     /// through the engine's tolerances (m/s), if the engine states one.
     pub velocity_uncertainty: Option<f64>,
@@ -623,6 +626,7 @@ pub fn steady_state<E: PeriodEngine, O: Observer>(
     let period = engine.signal().period();
     Ok(SteadyState {
         boundary_velocity: before.velocity,
+        residual: (before.velocity - v_star).abs(),
         map_derivative,
         v_inf: end.step / period,
         stats: stats.last,

@@ -257,11 +257,14 @@ pub fn run_with<E: PeriodEngine>(
 /// Error estimates from measurable quantities:
 /// * `v_inf`: the engine's bound `u` on the velocity error one period
 ///   introduces (event-time brackets times the jump in slider acceleration
-///   at each event, plus zero-velocity decisions), carried to the fixed
-///   point as `u / (1 - P')` with the period map's derivative `P'`, plus
-///   `u` again for the steady-state period itself, plus a rounding bound of
-///   `8 eps` per segment on velocities and positions. Without an engine
-///   bound, the disagreement of transient and fixed point is used;
+///   at each event, plus zero-velocity decisions) and the fixed point's
+///   residual `|P(v*) - v*|`, carried to the fixed point as
+///   `/ (1 - P')` with the period map's derivative `P'`, plus `u` again for
+///   the steady-state period itself, plus a rounding bound of `8 eps` per
+///   segment on velocities and positions; a velocity error moves the slider
+///   only while it slides. No bound is given through a grazing or where
+///   `P' >= 1`. Without an engine bound, the disagreement of transient and
+///   fixed point is used;
 /// * ratios (smoothness, durability, friction energy) carry the relative
 ///   error of `v_inf` and the same rounding bound on their own inputs;
 /// * `p_0.99` is exact unless a `v_p` lies within the `v_inf` error of the
@@ -288,7 +291,8 @@ fn estimate_errors(
     let velocity_error = match steady.velocity_uncertainty {
         Some(u) if u.is_finite() => {
             let contraction = 1.0 - steady.map_derivative;
-            (contraction > 0.0).then(|| (u + rounding_v) / contraction + u + rounding_v)
+            (contraction > 0.0)
+                .then(|| (u + rounding_v + steady.residual) / contraction + u + rounding_v)
         }
         // A grazing in the steady orbit: the motion depends discontinuously
         // on the data there, so no bound holds.
