@@ -31,6 +31,9 @@ pub struct Root {
     /// Width of the final bracket (an upper bound of the error unless the
     /// root was hit exactly, when it is 0).
     pub bracket: f64,
+    /// `f'` at the last point evaluated (within the bracket width of `t`),
+    /// NaN if none was evaluated.
+    pub derivative: f64,
 }
 
 /// Finds a root of `f` in `[lo, hi]`; `f_and_df(t)` returns `(f(t), f'(t))`.
@@ -50,6 +53,7 @@ pub fn solve(
             t: lo,
             iterations: 0,
             bracket: 0.0,
+            derivative: f64::NAN,
         };
     }
     if f_hi == 0.0 {
@@ -57,6 +61,7 @@ pub fn solve(
             t: hi,
             iterations: 0,
             bracket: 0.0,
+            derivative: f64::NAN,
         };
     }
     let lo_positive = f_lo.is_sign_positive();
@@ -82,6 +87,7 @@ pub fn solve(
                 } else {
                     hi - lo
                 },
+                derivative: df,
             };
         }
         if f.is_sign_positive() == lo_positive {
@@ -96,6 +102,7 @@ pub fn solve(
                 t: newton.clamp(lo, hi),
                 iterations: iteration,
                 bracket: 2.0 * (newton - t).abs(),
+                derivative: df,
             };
         }
         let newton_ok = df != 0.0
@@ -111,6 +118,7 @@ pub fn solve(
                 t: next.clamp(lo, hi),
                 iterations: iteration,
                 bracket: hi - lo,
+                derivative: df,
             };
         }
         t = next;
@@ -119,6 +127,7 @@ pub fn solve(
         t: 0.5 * (lo + hi),
         iterations: MAX_ITERATIONS,
         bracket: hi - lo,
+        derivative: f64::NAN,
     }
 }
 

@@ -133,8 +133,8 @@ pub struct EventEngine<'s> {
 /// How a slip phase ended.
 enum SlipEnd {
     /// Transversal zero of `v_rel` at this phase, known to within the
-    /// second value (s).
-    Crossing(f64, f64),
+    /// second value (s), with `a_R` there if the solver saw it.
+    Crossing(f64, f64, Option<f64>),
     /// Tangential touch at this critical point.
     Grazing(f64),
     /// A rod jump at this phase.
@@ -490,7 +490,7 @@ impl<'s> EventEngine<'s> {
                     let f_lo = f_start_of(lo);
                     evaluations += 1;
                     if f_lo <= 0.0 {
-                        break SlipEnd::Crossing(lo, 0.0);
+                        break SlipEnd::Crossing(lo, 0.0, None);
                     }
                     let root = bracket::solve(
                         |t| {
@@ -506,7 +506,12 @@ impl<'s> EventEngine<'s> {
                     hints[j] = [hints[j][1], root.t];
                     iterations += u64::from(root.iterations);
                     evaluations += u64::from(root.iterations);
-                    break SlipEnd::Crossing(root.t, root.bracket);
+                    // f' = d (a_R - a_s) at the solver's last point.
+                    let a_r = root
+                        .derivative
+                        .is_finite()
+                        .then(|| d * root.derivative + a_s);
+                    break SlipEnd::Crossing(root.t, root.bracket, a_r);
                 }
             }
             if at_period_end {
@@ -520,7 +525,7 @@ impl<'s> EventEngine<'s> {
         self.counters.evaluations += evaluations;
         self.counters.root_iterations += iterations;
         let end = match outcome {
-            SlipEnd::Crossing(t, _) | SlipEnd::Grazing(t) | SlipEnd::Jump(t) => t,
+            SlipEnd::Crossing(t, _, _) | SlipEnd::Grazing(t) | SlipEnd::Jump(t) => t,
             SlipEnd::PeriodEnd => self.period,
         };
         // Closed-form slip segment [tau0, end].
@@ -556,15 +561,15 @@ impl<'s> EventEngine<'s> {
         match outcome {
             SlipEnd::PeriodEnd => Ok(()),
             SlipEnd::Jump(_) => self.jump(walk, observer),
-            SlipEnd::Crossing(t, _) | SlipEnd::Grazing(t) => {
-                let (grazing, time_error) = match outcome {
-                    SlipEnd::Crossing(_, e) => (false, e),
-                    _ => (true, 0.0),
+            SlipEnd::Crossing(t, _, _) | SlipEnd::Grazing(t) => {
+                let (grazing, time_error, a_r_seen) = match outcome {
+                    SlipEnd::Crossing(_, e, a) => (false, e, a),
+                    _ => (true, 0.0, None),
                 };
                 let mode = self.mode_for(0.0, t);
                 let old = walk.mode;
                 walk.mode = mode;
-                let a_r = signal.acceleration(t);
+                let a_r = a_r_seen.unwrap_or_else(|| signal.acceleration(t));
                 let a_new = match mode {
                     Mode::Stick => a_r,
                     Mode::Slip(Direction::Forward) => self.slip_forward.1,
