@@ -510,7 +510,7 @@ impl<'s> EventEngine<'s> {
                     let a_r = root
                         .derivative
                         .is_finite()
-                        .then(|| d * root.derivative + a_s);
+                        .then_some(d * root.derivative + a_s);
                     break SlipEnd::Crossing(root.t, root.bracket, a_r);
                 }
             }
