@@ -488,9 +488,6 @@ pub fn moves_towards<E: PeriodEngine>(
     Ok(if v < target { p > v } else { p < v })
 }
 
-/// Largest number of bracket expansions before the search gives up and
-/// reports that the slider runs away.
-const MAX_EXPANSIONS: u32 = 24;
 /// Iteration limit of the fixed-point search.
 const MAX_FIXED_POINT_ITERATIONS: u32 = 200;
 
@@ -507,53 +504,28 @@ pub fn fixed_point<E: PeriodEngine>(
     if g0 == 0.0 {
         return Ok((guess, d0, 0, 0.0));
     }
-    // Bracket [lo, hi] with g(lo) > 0 >= g(hi), grown in the direction P
-    // moves the guess.
-    let (mut lo, mut hi);
-    let mut step = span;
-    if g0 > 0.0 {
-        lo = guess;
-        hi = guess.max(hi_r);
-        let mut n = 0;
-        loop {
-            let (p, _) = period_map(engine, hi)?;
-            if p - hi <= 0.0 {
-                break;
-            }
-            lo = hi;
-            hi += step;
-            step *= 2.0;
-            n += 1;
-            if n > MAX_EXPANSIONS {
-                return Err(SimulationError::NoSteadyState {
-                    direction: "growing",
-                    velocity: hi,
-                    periods: engine.counters().periods,
-                });
-            }
-        }
+    // Bracket [lo, hi] with g(lo) > 0 >= g(hi) in the direction P moves
+    // the guess. The rod's velocity range closes it: a slider faster than
+    // the rod ever is slides backwards, and can only climb again by sliding
+    // forwards, that is, slower than the rod; so unless the load g_t
+    // outweighs sliding friction, P(max v_R) <= max v_R and likewise
+    // P(min v_R) >= min v_R. Where that fails there is no periodic orbit
+    // reachable in that direction: the slider runs away.
+    let (lo, hi, far, direction) = if g0 > 0.0 {
+        (guess, guess.max(hi_r), guess.max(hi_r), "growing")
     } else {
-        hi = guess;
-        lo = guess.min(lo_r);
-        let mut n = 0;
-        loop {
-            let (p, _) = period_map(engine, lo)?;
-            if p - lo > 0.0 {
-                break;
-            }
-            hi = lo;
-            lo -= step;
-            step *= 2.0;
-            n += 1;
-            if n > MAX_EXPANSIONS {
-                return Err(SimulationError::NoSteadyState {
-                    direction: "falling",
-                    velocity: lo,
-                    periods: engine.counters().periods,
-                });
-            }
-        }
+        (guess.min(lo_r), guess, guess.min(lo_r), "falling")
+    };
+    let (p_far, _) = period_map(engine, far)?;
+    let closes = if g0 > 0.0 { p_far <= far } else { p_far > far };
+    if !closes {
+        return Err(SimulationError::NoSteadyState {
+            direction,
+            velocity: p_far,
+            periods: engine.counters().periods,
+        });
     }
+    let (mut lo, mut hi) = (lo, hi);
     let tiny = 4.0 * f64::EPSILON * span;
     let (mut v, mut g, mut dp) = (guess, g0, d0);
     let mut correction = f64::INFINITY;

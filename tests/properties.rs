@@ -87,7 +87,13 @@ fn run(scene: &Scene, signal: &Signal) -> Result<RunReport, Error> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(1000))]
+    // A fixed seed keeps CI reproducible; `PROPTEST_RNG_SEED=<n>` explores
+    // other scenes.
+    #![proptest_config(ProptestConfig {
+        cases: 1000,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x57_1c_c5),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn random_scenes_are_sound(scene in scene()) {
@@ -104,12 +110,18 @@ proptest! {
         };
         let ind = &r.indicators;
         prop_assert!(ind.v_inf.is_finite());
-        prop_assert!(!ind.smoothness.is_nan() && !ind.durability.is_nan());
+        let spread = r.steady.stats.v_max - r.steady.stats.v_min;
+        // Smoothness is undefined (none) only without any motion at all.
+        prop_assert!(!ind.smoothness.is_nan() || (ind.v_inf == 0.0 && spread == 0.0));
+        prop_assert!(!ind.durability.is_nan());
         prop_assert!(ind.friction_energy >= 0.0 && ind.friction_energy.is_finite());
         prop_assert!(r.steady.stats.sliding_distance >= 0.0);
         prop_assert!((0.0..=1.0).contains(&ind.stiction_fraction));
         let (lo, hi) = signal.velocity_range();
-        let slack = r.error.v_inf.unwrap() + 1e-12 * (hi - lo);
+        // Where the run claims no bound (a grazing orbit, P' >= 1), the
+        // comparisons below can only check that the runs succeed.
+        let bound = r.error.v_inf;
+        let slack = bound.unwrap_or(0.0) + 1e-12 * (hi - lo);
         prop_assert!(ind.v_inf >= lo - slack && ind.v_inf <= hi + slack,
             "v_inf {} outside [{lo}, {hi}]", ind.v_inf);
         for (value, err) in [(ind.v_inf, r.error.v_inf), (ind.smoothness, r.error.smoothness)] {
@@ -120,18 +132,22 @@ proptest! {
         let mut mirrored_scene = scene.clone();
         mirrored_scene.motor.extra_acceleration = -scene.motor.extra_acceleration;
         let m = run(&mirrored_scene, &signal.mirrored()).unwrap();
-        let tol = 2.0 * r.error.v_inf.unwrap() + 1e-13 * (hi - lo);
-        prop_assert!((m.indicators.v_inf + ind.v_inf).abs() <= tol,
-            "mirror: {} vs {}", m.indicators.v_inf, ind.v_inf);
+        if let (Some(a), Some(b)) = (bound, m.error.v_inf) {
+            let tol = a + b + 1e-13 * (hi - lo);
+            prop_assert!((m.indicators.v_inf + ind.v_inf).abs() <= tol,
+                "mirror: {} vs {}", m.indicators.v_inf, ind.v_inf);
+        }
 
         // A delay of one whole period is the same signal, up to rounding of
         // its coefficients.
         if let Signal::Fourier(f) = &signal {
             let shifted = Signal::Fourier(f.delayed(f.period()));
             let s = run(&scene, &shifted).unwrap();
-            let tol = r.error.v_inf.unwrap() + s.error.v_inf.unwrap() + 1e-12 * (hi - lo);
-            prop_assert!((s.indicators.v_inf - ind.v_inf).abs() <= tol,
-                "delayed: {} vs {}", s.indicators.v_inf, ind.v_inf);
+            if let (Some(a), Some(b)) = (bound, s.error.v_inf) {
+                let tol = a + b + 1e-12 * (hi - lo);
+                prop_assert!((s.indicators.v_inf - ind.v_inf).abs() <= tol,
+                    "delayed: {} vs {}", s.indicators.v_inf, ind.v_inf);
+            }
         }
     }
 }
