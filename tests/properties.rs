@@ -91,7 +91,7 @@ proptest! {
     // other scenes.
     #![proptest_config(ProptestConfig {
         cases: 1000,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(0x57_1c_c5),
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x0057_1cc5),
         ..ProptestConfig::default()
     })]
 

@@ -664,7 +664,7 @@ proptest! {
     // A fixed seed keeps CI reproducible (`PROPTEST_RNG_SEED` explores others).
     #![proptest_config(ProptestConfig {
         cases: 256,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5ce_e5),
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x0005_cee5),
         ..ProptestConfig::default()
     })]
 

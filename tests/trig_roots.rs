@@ -36,7 +36,7 @@ const OPTIMISED: bool = !cfg!(debug_assertions);
 fn cases(release: u32) -> ProptestConfig {
     ProptestConfig {
         cases: if OPTIMISED { release } else { release / 16 },
-        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5717_c4_5119),
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x0057_17c4_5119),
         ..ProptestConfig::default()
     }
 }
