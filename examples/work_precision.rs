@@ -378,23 +378,7 @@ fn font(size: f64) -> TextStyle<'static> {
 /// `10^k` with a superscript exponent.
 fn power_of_ten(v: &f64) -> String {
     let k = v.log10().round() as i32;
-    let digits: String = k
-        .to_string()
-        .chars()
-        .map(|c| match c {
-            '-' => '⁻',
-            '0' => '⁰',
-            '1' => '¹',
-            '2' => '²',
-            '3' => '³',
-            '4' => '⁴',
-            '5' => '⁵',
-            '6' => '⁶',
-            '7' => '⁷',
-            '8' => '⁸',
-            _ => '⁹',
-        })
-        .collect();
+    let digits = stickslip::plot::superscript(k);
     format!("10{digits}")
 }
 

@@ -290,30 +290,28 @@ pub fn catalogue() -> Vec<StressCase> {
             Check::RunAway,
         );
     }
-    // Ideal signals with jumps.
-    for kappa in [0.5, 1.0] {
+    // Ideal signals with jumps: stick-slip and slip-slip closed forms.
+    for kappa in [0.5, 1.0, 4.0, 36.0] {
         let a_r = kappa * a_0;
         let t = (2.0 * 25e-6 / a_r).sqrt();
+        let (expected, source) = if kappa <= 1.0 {
+            (
+                25e-6 / t * (1.0 + a_r / (a_r + a_d)),
+                "MODEL.md 7: (x/T)(1 + a_R/(a_R + a_d))",
+            )
+        } else {
+            (
+                t * (2.0 * a_r + a_d) / 4.0,
+                "MODEL.md 7: T (2 a_R + a_d) / 4",
+            )
+        };
         add(
             format!("ideal continuous, kappa {kappa}"),
             scene(ideal(kappa, 1.0)),
             Check::ClosedForm {
-                expected: 25e-6 / t * (1.0 + a_r / (a_r + a_d)),
+                expected,
                 rel: 1e-12,
-                source: "MODEL.md 7: (x/T)(1 + a_R/(a_R + a_d))",
-            },
-        );
-    }
-    for kappa in [4.0, 36.0] {
-        let a_r = kappa * a_0;
-        let t = (2.0 * 25e-6 / a_r).sqrt();
-        add(
-            format!("ideal continuous, kappa {kappa}"),
-            scene(ideal(kappa, 1.0)),
-            Check::ClosedForm {
-                expected: t * (2.0 * a_r + a_d) / 4.0,
-                rel: 1e-12,
-                source: "MODEL.md 7: T (2 a_R + a_d) / 4",
+                source,
             },
         );
     }

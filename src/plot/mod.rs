@@ -494,7 +494,8 @@ fn log_tick_label(v: f64, (lo, hi): (f64, f64)) -> String {
     }
 }
 
-fn superscript(e: i32) -> String {
+/// An integer in superscript digits, for exponents in axis labels.
+pub fn superscript(e: i32) -> String {
     e.to_string()
         .chars()
         .map(|c| match c {

@@ -229,21 +229,7 @@ pub fn figure2(motor: &Motor) -> Result<Figure, PlotError> {
                 );
                 p.y_label_area = 92;
                 if matches!(q, Quantity::Acceleration) {
-                    let band = "stick band ±a₀ = ±124 m/s²";
-                    p.series.push(Series::hline(
-                        Some(band),
-                        a0,
-                        (0.0, period),
-                        REFERENCE,
-                        Mark::Dashed(2, 8, 5),
-                    ));
-                    p.series.push(Series::hline(
-                        Some(band),
-                        -a0,
-                        (0.0, period),
-                        REFERENCE,
-                        Mark::Dashed(2, 8, 5),
-                    ));
+                    push_stick_band(&mut p, a0, period);
                 }
                 p.series.push(Series::line(
                     Some("ideal signal (11); vertical lines: jump at t₁, infinite v or a"),
@@ -476,21 +462,7 @@ pub fn figure4(motor: &Motor) -> Result<Figure, PlotError> {
                 Axis::linear(label, padded(lo, hi, 0.06)).scaled(scale),
             );
             if matches!(q, Quantity::Acceleration) {
-                let band = "stick band ±a₀ = ±124 m/s²";
-                p.series.push(Series::hline(
-                    Some(band),
-                    a0,
-                    (0.0, period),
-                    REFERENCE,
-                    Mark::Dashed(2, 8, 5),
-                ));
-                p.series.push(Series::hline(
-                    Some(band),
-                    -a0,
-                    (0.0, period),
-                    REFERENCE,
-                    Mark::Dashed(2, 8, 5),
-                ));
+                push_stick_band(&mut p, a0, period);
             }
             p.series.push(Series::line(
                 Some("without σ factors"),
@@ -616,4 +588,18 @@ pub fn figure5(motor: &Motor) -> Result<Figure, PlotError> {
         svg,
         csv: csv.finish(),
     })
+}
+
+/// The stick band `±a_0` as two dashed lines over one period.
+fn push_stick_band(p: &mut Panel, a0: f64, period: f64) {
+    let band = "stick band ±a₀ = ±124 m/s²";
+    for level in [a0, -a0] {
+        p.series.push(Series::hline(
+            Some(band),
+            level,
+            (0.0, period),
+            REFERENCE,
+            Mark::Dashed(2, 8, 5),
+        ));
+    }
 }
