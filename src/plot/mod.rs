@@ -274,6 +274,31 @@ pub(crate) fn render(
     Ok(svg)
 }
 
+/// A figure of panels side by side under a title and one shared legend,
+/// with its CSV data.
+pub(crate) fn side_by_side(
+    name: &str,
+    size: (u32, u32),
+    title: &str,
+    panels: &[Panel],
+    csv: Csv,
+) -> Result<Figure, PlotError> {
+    let legend = legend_of(&panels.iter().collect::<Vec<_>>());
+    let svg = render(name, size, |root| {
+        let body = titled(root, title)?;
+        let body = with_legend_on_top(&body, &legend)?;
+        for (a, p) in body.split_evenly((1, panels.len())).iter().zip(panels) {
+            draw_panel(a, p)?;
+        }
+        Ok(())
+    })?;
+    Ok(Figure {
+        name: name.to_owned(),
+        svg,
+        csv: csv.finish(),
+    })
+}
+
 /// Splits a title strip of the figure title's height off the top of `area`
 /// and writes `title` centred in it; returns the rest.
 pub(crate) fn titled<'a>(

@@ -18,7 +18,7 @@
 
 use super::{
     Area, Axis, Cell, Csv, Figure, Mark, PALETTE, Panel, PlotError, REFERENCE, Series, draw_panel,
-    legend_of, linspace, min_max, padded, render, titled, with_legend_on_top,
+    legend_of, linspace, min_max, padded, render, side_by_side, titled, with_legend_on_top,
 };
 use crate::motor::Motor;
 use crate::signal::fourier::sigma_factor;
@@ -372,23 +372,13 @@ pub fn figure3(motor: &Motor) -> Result<Figure, PlotError> {
     for p in &mut panels {
         p.y.range = (0.0, (top * 1.08 / 0.05).ceil() * 0.05);
     }
-    let legend = legend_of(&panels.iter().collect::<Vec<_>>());
-    let svg = render(NAME, (1300, 620), |root| {
-        let body = titled(
-            root,
-            "Figure 3: normalised harmonic amplitudes, continuous signal, κ = 1 (lines for visual guidance)",
-        )?;
-        let body = with_legend_on_top(&body, &legend)?;
-        for (a, p) in body.split_evenly((1, 2)).iter().zip(&panels) {
-            draw_panel(a, p)?;
-        }
-        Ok(())
-    })?;
-    Ok(Figure {
-        name: NAME.to_owned(),
-        svg,
-        csv: csv.finish(),
-    })
+    side_by_side(
+        NAME,
+        (1300, 620),
+        "Figure 3: normalised harmonic amplitudes, continuous signal, κ = 1 (lines for visual guidance)",
+        &panels,
+        csv,
+    )
 }
 
 // ------------------------------------------------------------ figure 4 ----
@@ -567,27 +557,17 @@ pub fn figure5(motor: &Motor) -> Result<Figure, PlotError> {
         }
         panels.push(p);
     }
-    let legend = legend_of(&panels.iter().collect::<Vec<_>>());
     let f_max = orders[0] as f64 * signals[0].3.f0();
-    let svg = render(NAME, (1400, 600), |root| {
-        let body = titled(
-            root,
-            &format!(
-                "Figure 5: rod signals of equal maximum frequency f_max = n·f₀ = {:.0} Hz (n√κ = 6)",
-                f_max
-            ),
-        )?;
-        let body = with_legend_on_top(&body, &legend)?;
-        for (a, p) in body.split_evenly((1, 2)).iter().zip(&panels) {
-            draw_panel(a, p)?;
-        }
-        Ok(())
-    })?;
-    Ok(Figure {
-        name: NAME.to_owned(),
-        svg,
-        csv: csv.finish(),
-    })
+    side_by_side(
+        NAME,
+        (1400, 600),
+        &format!(
+            "Figure 5: rod signals of equal maximum frequency f_max = n·f₀ = {:.0} Hz (n√κ = 6)",
+            f_max
+        ),
+        &panels,
+        csv,
+    )
 }
 
 /// The stick band `±a_0` as two dashed lines over one period.

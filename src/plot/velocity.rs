@@ -9,8 +9,8 @@
 //! steady-state period from a run with `outputs.trajectory = true`.
 
 use super::{
-    Axis, Cell, Csv, Figure, Mark, PALETTE, Panel, PlotError, REFERENCE, Series, draw_panel,
-    legend_of, min_max, padded, render, titled, with_legend_on_top,
+    Axis, Cell, Csv, Figure, Mark, PALETTE, Panel, PlotError, REFERENCE, Series, min_max, padded,
+    side_by_side,
 };
 use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::{Mode, PeriodEngine, PeriodStart, Segment};
@@ -206,26 +206,16 @@ pub fn figure8(base: &Scene) -> Result<Figure, PlotError> {
             p
         })
         .collect();
-    let legend = legend_of(&panels.iter().collect::<Vec<_>>());
-    let svg = render(NAME, (1400, 620), |root| {
-        let body = titled(
-            root,
-            &format!(
-                "Figure 8: velocities of rod and slider, n = 2, no σ factors, √κ = 1 (T = {:.0} µs)",
-                period * 1e6
-            ),
-        )?;
-        let body = with_legend_on_top(&body, &legend)?;
-        for (a, p) in body.split_evenly((1, 2)).iter().zip(&panels) {
-            draw_panel(a, p)?;
-        }
-        Ok(())
-    })?;
-    Ok(Figure {
-        name: NAME.to_owned(),
-        svg,
-        csv: csv.finish(),
-    })
+    side_by_side(
+        NAME,
+        (1400, 620),
+        &format!(
+            "Figure 8: velocities of rod and slider, n = 2, no σ factors, √κ = 1 (T = {:.0} µs)",
+            period * 1e6
+        ),
+        &panels,
+        csv,
+    )
 }
 
 /// The slider velocity as one polyline: slip segments by their two ends
