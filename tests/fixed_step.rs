@@ -7,40 +7,26 @@
 //! definition (step counts, map derivative), or the model (MODEL.md
 //! section 1).
 
+mod common;
+
+use common::ideal;
 use stickslip::check;
 use stickslip::engine::event::{EventEngine, EventOptions};
 use stickslip::engine::fixed_step::{FixedStepEngine, FixedStepOptions};
 use stickslip::engine::{Event, EventKind, Mode, PeriodEngine, PeriodStart};
 use stickslip::indicators;
 use stickslip::observer::{EventLog, Trajectory};
-use stickslip::scene::{EngineKind, Indicator};
-use stickslip::signal::{IdealShape, SignalSpec};
+use stickslip::scene::EngineKind;
+use stickslip::signal::SignalSpec;
 use stickslip::{Motor, Scene, Signal, simulation};
 
 fn fourier(kappa: f64, n: usize) -> SignalSpec {
-    SignalSpec::fourier(25e-6, kappa, n, true)
-}
-
-fn ideal(kappa: f64, duty: f64) -> SignalSpec {
-    SignalSpec::Ideal(IdealShape {
-        stroke: 25e-6,
-        kappa,
-        duty,
-    })
+    common::fourier(25e-6, kappa, n, true)
 }
 
 /// The paper's motor with `spec` and every indicator but power.
 fn scene(spec: SignalSpec) -> Scene {
-    let mut scene = Scene {
-        signal: spec,
-        actuator: None,
-        ..Scene::default()
-    };
-    scene
-        .outputs
-        .indicators
-        .retain(|i| *i != Indicator::VelocityPerPower);
-    scene
+    common::scene_with(spec)
 }
 
 fn reference<'s>(signal: &'s Signal, motor: &Motor, steps: u32) -> FixedStepEngine<'s> {
