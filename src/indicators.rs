@@ -1,4 +1,4 @@
-//! Performance indicators (MODEL.md section 3; the paper's sections 6.1,
+//! Performance indicators (docs/model.md section 3; the paper's sections 6.1,
 //! 6.2): start-up from rest and the periodic steady state.
 //!
 //! Per period `p` (`t` in `[(p-1)T, pT]`):

@@ -1,5 +1,5 @@
 //! The motor: slider mass, contact force and Coulomb friction, expressed as
-//! accelerations of the slider (MODEL.md section 1).
+//! accelerations of the slider (docs/model.md section 1).
 //!
 //! * break-away acceleration `a_0 = mu_0 F_c / m_s` (the largest rod
 //!   acceleration a stuck slider can follow),
@@ -30,7 +30,7 @@ pub struct MotorParams {
 }
 
 impl Default for MotorParams {
-    /// The paper's example motor (MODEL.md section 6): `m_s = 1.4 g`,
+    /// The paper's example motor (docs/model.md section 6): `m_s = 1.4 g`,
     /// `F_c = 1 N`, `a_0 = 124 m/s^2`, `a_d ≈ 112 m/s^2`.
     fn default() -> Self {
         Self {

@@ -1,4 +1,4 @@
-//! Electrical input power of the piezoelectric actuator (MODEL.md section 4,
+//! Electrical input power of the piezoelectric actuator (docs/model.md section 4,
 //! the paper's section 6.3, equations (20)-(36), Table 1).
 //!
 //! # Model

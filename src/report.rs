@@ -3,7 +3,7 @@
 //! The text summary prints each value with as many significant digits as
 //! its error estimate supports (never more than 15), followed by the
 //! estimate, so every printed digit is meant. The JSON object uses the keys
-//! fixed in `INTERFACE.md`; values that do not exist (an infinite
+//! fixed in `docs/interface.md`; values that do not exist (an infinite
 //! smoothness when the slider velocity is constant, a start-up that was not
 //! reached) are `null`, never NaN.
 
@@ -65,7 +65,7 @@ fn events_json(e: &EventCounts) -> Value {
     })
 }
 
-/// The run as one JSON object with the keys of `INTERFACE.md`.
+/// The run as one JSON object with the keys of `docs/interface.md`.
 pub fn to_json(r: &RunReport) -> Value {
     let mut m = Map::new();
     let ind = &r.indicators;

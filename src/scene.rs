@@ -4,7 +4,7 @@
 //! simulation: serde reads the text into a [`SceneFile`], which mirrors the
 //! format and rejects unknown fields, and [`Scene::try_from`] checks every
 //! value and builds the typed [`Scene`]. The field names are the user-facing
-//! contract of `INTERFACE.md` and do not change.
+//! contract of `docs/interface.md` and do not change.
 //!
 //! # Format
 //!
@@ -262,7 +262,7 @@ pub struct OutputsTable {
     pub events: Option<bool>,
 }
 
-/// A performance indicator a scene can ask for (MODEL.md sections 3, 4).
+/// A performance indicator a scene can ask for (docs/model.md sections 3, 4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Indicator {
     /// Steady-state mean slider velocity `v_inf` (m/s).
@@ -290,7 +290,7 @@ pub struct UnknownIndicator {
 }
 
 impl Indicator {
-    /// Every indicator, in the order of `INTERFACE.md`.
+    /// Every indicator, in the order of `docs/interface.md`.
     pub const ALL: [Indicator; 7] = [
         Indicator::VInf,
         Indicator::StartupTime,
@@ -428,7 +428,7 @@ pub struct Scene {
 }
 
 impl Default for Scene {
-    /// The paper's example (MODEL.md section 6): its motor, `n = 2`,
+    /// The paper's example (docs/model.md section 6): its motor, `n = 2`,
     /// `sqrt(kappa) = 6`, sigma factors, stroke 25 um, the Table 1 actuator,
     /// the event engine and every indicator.
     fn default() -> Self {

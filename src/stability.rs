@@ -165,7 +165,7 @@ fn with_motor(mut s: Scene, f: impl FnOnce(&mut MotorParams)) -> Scene {
     s
 }
 
-/// The catalogue of MODEL.md section 7 and issue 5's extreme cases.
+/// The catalogue of docs/model.md section 7 and issue 5's extreme cases.
 pub fn catalogue() -> Vec<StressCase> {
     let motor = Motor::default();
     let (a_0, a_d) = (motor.a_0(), motor.a_d());
@@ -297,12 +297,12 @@ pub fn catalogue() -> Vec<StressCase> {
         let (expected, source) = if kappa <= 1.0 {
             (
                 25e-6 / t * (1.0 + a_r / (a_r + a_d)),
-                "MODEL.md 7: (x/T)(1 + a_R/(a_R + a_d))",
+                "docs/model.md 7: (x/T)(1 + a_R/(a_R + a_d))",
             )
         } else {
             (
                 t * (2.0 * a_r + a_d) / 4.0,
-                "MODEL.md 7: T (2 a_R + a_d) / 4",
+                "docs/model.md 7: T (2 a_R + a_d) / 4",
             )
         };
         add(
@@ -339,7 +339,7 @@ pub fn catalogue() -> Vec<StressCase> {
             Check::ClosedForm {
                 expected: 25e-6 / t * (1.0 + a_0 / (a_0 + a_d)),
                 rel: 1e-12,
-                source: "MODEL.md 7 at kappa = 1 (band edge)",
+                source: "docs/model.md 7 at kappa = 1 (band edge)",
             },
         );
     }
@@ -372,7 +372,7 @@ pub fn catalogue() -> Vec<StressCase> {
             Signal::build(&fourier(25e-6, 36.0, 2, true), &Motor::default())
                 .expect("the paper's signal is valid"),
         ),
-        check: Check::Zero("no friction: the slider never moves (MODEL.md 7)"),
+        check: Check::Zero("no friction: the slider never moves (docs/model.md 7)"),
     });
     cases
 }
@@ -472,7 +472,7 @@ pub fn run_case(case: &StressCase) -> StressOutcome {
             let d = relative(r.indicators.v_inf, median);
             (
                 d <= *rel,
-                format!("MODEL.md 7: median rod velocity {median:.6}: rel. diff {d:.1e}"),
+                format!("docs/model.md 7: median rod velocity {median:.6}: rel. diff {d:.1e}"),
             )
         }
         (Check::Grazing { phase_fraction }, Ok(_)) => grazing_check(case, *phase_fraction),

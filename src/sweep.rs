@@ -59,7 +59,7 @@
 //! One row per case, sorted by case, with the columns
 //!
 //! * `case`, then one column per axis (in the order above);
-//! * each requested indicator under its `INTERFACE.md` name, in the order
+//! * each requested indicator under its `docs/interface.md` name, in the order
 //!   of [`Indicator::ALL`]; `stiction_fraction` (the start-up from rest, as
 //!   in `stickslip run --json`) is followed by `stiction_fraction_steady`
 //!   and `velocity_per_power` by `apparent_power` (VA);

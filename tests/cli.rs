@@ -1,4 +1,4 @@
-//! The command line: the default scene, JSON keys of INTERFACE.md, and
+//! The command line: the default scene, JSON keys of docs/interface.md, and
 //! bad input giving a one-line reason with a non-zero exit.
 
 use std::process::{Command, Output};

@@ -1,4 +1,4 @@
-//! The checks with known answers of MODEL.md section 7, to 1e-12 relative.
+//! The checks with known answers of docs/model.md section 7, to 1e-12 relative.
 
 mod common;
 
@@ -7,7 +7,7 @@ use stickslip::Signal;
 use stickslip::signal::SignalSpec;
 use stickslip::simulation;
 
-/// Ideal continuous signal, `kappa <= 1` (stick-slip). Closed form (MODEL.md
+/// Ideal continuous signal, `kappa <= 1` (stick-slip). Closed form (docs/model.md
 /// section 7): `v_1 = x_Rmax / T`, `v_p = (x_Rmax/T)(1 + a_R/(a_R + a_d))`
 /// for `p >= 2`, so `p_0.99 = 2`.
 #[test]
@@ -31,7 +31,7 @@ fn ideal_stick_slip_velocities_match_the_closed_form() {
 }
 
 /// Ideal continuous signal, `kappa > 1` (slip-slip): `v_inf = T (2 a_R + a_d)/4`,
-/// the rod overtaking the slider exactly at `T/2` (MODEL.md section 7).
+/// the rod overtaking the slider exactly at `T/2` (docs/model.md section 7).
 #[test]
 fn ideal_slip_slip_velocity_matches_the_closed_form() {
     let motor = paper_motor();
@@ -93,7 +93,7 @@ fn frictionless_slider_never_moves() {
 }
 
 /// A single harmonic is symmetric under `t -> t + T/2, x -> x_Rmax - x`,
-/// so the slider cannot prefer a direction: `v_inf = 0` (MODEL.md section 7).
+/// so the slider cannot prefer a direction: `v_inf = 0` (docs/model.md section 7).
 #[test]
 fn single_harmonic_gives_no_net_motion() {
     for (kappa, sigma) in [(1.0, false), (36.0, true), (0.3, false), (100.0, false)] {
@@ -146,7 +146,7 @@ fn fundamental_frequency_of_the_paper() {
     assert_rel(s.f0(), (motor.a_0() / 50e-6).sqrt(), 1e-15, "(37)");
 }
 
-/// Transient and period-map steady states agree (MODEL.md section 3), with
+/// Transient and period-map steady states agree (docs/model.md section 3), with
 /// the start-up simulated to convergence (`run.verify_steady_state`).
 #[test]
 fn transient_and_period_map_agree() {

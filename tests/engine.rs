@@ -101,7 +101,7 @@ fn no_event_fires_twice() {
     }
 }
 
-/// Asymmetric thresholds (MODEL.md section 1) on the ideal continuous
+/// Asymmetric thresholds (docs/model.md section 1) on the ideal continuous
 /// signal. Stick-slip (`a_R <= a_0^+`): after the jump the slider slips
 /// back with `-a_d + g_t` until `tau* = a_R T / (a_R + a_d - g_t)`, then
 /// sticks, so `x_p = x_Rmax (1 + tau*/T)` for `p >= 2` (the closed form of

@@ -18,7 +18,7 @@ fn run_with_tolerance(scene: &Scene, time_tolerance: f64) -> RunReport {
     simulation::run_with(EventEngine::new(&signal, &motor, options), scene, &motor).unwrap()
 }
 
-/// Closed forms of MODEL.md section 7 (and the discrete step of
+/// Closed forms of docs/model.md section 7 (and the discrete step of
 /// `tests/engine.rs`): the estimate bounds the true error.
 #[test]
 fn estimate_bounds_the_error_against_closed_forms() {

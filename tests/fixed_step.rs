@@ -4,7 +4,7 @@
 //! cross-check and its command line.
 //!
 //! Every expected value comes from the other engine, the scheme's own
-//! definition (step counts, map derivative), or the model (MODEL.md
+//! definition (step counts, map derivative), or the model (docs/model.md
 //! section 1).
 
 mod common;

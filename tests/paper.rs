@@ -1,5 +1,5 @@
 //! Numbers from the paper (sections 4, 7, 8) and the independent reference
-//! grid of `../shared/reference/section7_grid.csv`.
+//! grid of `tests/data/section7_grid.csv`.
 
 mod common;
 
@@ -79,7 +79,7 @@ fn fourier_signals_are_scaled_and_shifted_exactly() {
 /// Section 8: with the signal shape fixed and `T ∝ sqrt(x_hat)` (fixed
 /// `kappa`, `n`, sigma), `x_inf ∝ x_hat` (38), `v_inf ∝ sqrt(x_hat)` (39),
 /// start-up time `∝ sqrt(x_hat)` (42) — exactly, since the equations are
-/// invariant under that rescaling (MODEL.md section 5).
+/// invariant under that rescaling (docs/model.md section 5).
 #[test]
 fn stroke_scaling_laws_hold_to_rounding() {
     for (kappa, n, sigma) in [(36.0, 2, true), (1.0, 3, false), (0.36, 5, true)] {
@@ -132,11 +132,7 @@ struct ReferenceRow {
 }
 
 fn reference_rows() -> Vec<ReferenceRow> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../shared/reference/section7_grid.csv"
-    );
-    let text = std::fs::read_to_string(path).expect("reference grid beside the checkout");
+    let text = common::reference_grid_text();
     let mut reader = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
         .from_reader(text.as_bytes());

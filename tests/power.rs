@@ -6,9 +6,11 @@
 //! * scaling: (31)-(35) are linear in the amplitudes (`U, I ∝ x_Rmax`), and
 //!   their limits far below and far above the resonance (module docs of
 //!   `stickslip::power`);
-//! * the Table 1 resonance: MODEL.md section 4;
+//! * the Table 1 resonance: docs/model.md section 4;
 //! * `S = v_inf / velocity_per_power` of the independent reference grid
-//!   (`reference/section7_grid.csv`, MODEL.md section 7).
+//!   (`tests/data/section7_grid.csv`, docs/model.md section 7).
+
+mod common;
 
 use approx::assert_relative_eq;
 use std::f64::consts::PI;
@@ -263,7 +265,7 @@ fn paper_scaling_keeps_the_shape_and_gives_no_single_power_law() {
 
 #[test]
 fn table_1_resonance() {
-    // MODEL.md section 4: sqrt(c/M)/(2 pi) = 13.95 kHz.
+    // docs/model.md section 4: sqrt(c/M)/(2 pi) = 13.95 kHz.
     let f = ActuatorParams::default().resonance_frequency();
     assert!((f / 1e3 - 13.95).abs() < 0.01, "{f} Hz");
 }
@@ -312,18 +314,11 @@ fn invalid_actuator_names_the_field() {
 
 #[test]
 fn apparent_power_matches_the_reference_grid() {
-    // reference/section7_grid.csv: S = v_inf / velocity_per_power, from an
+    // tests/data/section7_grid.csv: S = v_inf / velocity_per_power, from an
     // independent implementation; its velocity_per_power is printed to 6
     // digits (rounding up to 5e-6) and v_inf is accurate to 1e-6. The input
     // power itself needs no simulation, so only rounding separates the two.
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../shared/reference/section7_grid.csv"
-    ));
-    let Ok(text) = text else {
-        eprintln!("reference grid not found; skipped");
-        return;
-    };
+    let text = common::reference_grid_text();
     let motor = Motor::default();
     let actuator = ActuatorParams::default();
     let mut rows = 0;

@@ -37,7 +37,7 @@ fn regime_counts_stick_entered_through_a_jump() {
 }
 
 /// The v_inf estimate was clamped at 1/(1 - P') <= 1000 and fell below the
-/// true error at very high kappa (closed form of MODEL.md section 7,
+/// true error at very high kappa (closed form of docs/model.md section 7,
 /// slip-slip: v_inf = T (2 a_R + a_d) / 4).
 #[test]
 fn error_estimate_holds_when_the_period_map_barely_contracts() {

@@ -1,6 +1,6 @@
 //! Scene files: the example scenes parse, the default scene is the paper's,
 //! `to_toml` round-trips, and every kind of bad input gives the right error
-//! variant with a message naming the field (INTERFACE.md, STYLE.md
+//! variant with a message naming the field (docs/interface.md, STYLE.md
 //! "Validate at the boundary").
 
 use proptest::prelude::*;
@@ -118,7 +118,7 @@ fn paper_default_scene_is_scene_default() {
 
 #[test]
 fn scene_default_is_the_papers_example() {
-    // MODEL.md section 6 and the paper's section 7 headline case.
+    // docs/model.md section 6 and the paper's section 7 headline case.
     let scene = Scene::default();
     assert_eq!(scene.motor, MotorParams::default());
     assert_eq!(scene.signal, SignalSpec::fourier(25e-6, 36.0, 2, true));

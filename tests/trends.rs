@@ -1,5 +1,5 @@
 //! The trends of the paper's section 7 (figures 6 and 7), as listed in
-//! MODEL.md section 7, asserted from sweep data on the grid the figures use:
+//! docs/model.md section 7, asserted from sweep data on the grid the figures use:
 //! `examples/sweeps/section7.toml` (f_max levels `n sqrt(kappa)` of the
 //! reference grid, `n = 2..=8`, with and without sigma factors, the paper's
 //! motor and the Table 1 actuator).
@@ -8,6 +8,8 @@
 //! the test asserts exactly where it holds and pins the exceptions, so a
 //! change in either shows up. `cargo test --release --test trends --
 //! --nocapture` prints the table the assertions read.
+
+mod common;
 
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
@@ -117,15 +119,11 @@ fn print_table(g: &Grid) {
 }
 
 /// The grid is the one the figures use: the levels of the independent
-/// reference grid (`../shared/reference/section7_grid.csv`), `n = 2..=8`,
+/// reference grid (`tests/data/section7_grid.csv`), `n = 2..=8`,
 /// sigma off and on, on the paper's motor and actuator.
 #[test]
 fn the_sweep_is_the_figures_grid() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../shared/reference/section7_grid.csv"
-    ))
-    .expect("reference grid beside the checkout");
+    let text = common::reference_grid_text();
     let mut reference_levels: Vec<f64> = text
         .lines()
         .filter(|l| !l.starts_with('#') && !l.starts_with("level"))
@@ -157,7 +155,7 @@ fn the_sweep_is_the_figures_grid() {
     assert_eq!(grid().points.len(), 70);
 }
 
-/// MODEL.md section 7, paper section 7: "For any given maximum frequency
+/// docs/model.md section 7, paper section 7: "For any given maximum frequency
 /// the highest steady state velocity is reached with n = 2" — with and
 /// without sigma factors. Also paper section 7: "Higher maximum frequencies
 /// lead to higher steady state velocities" (at every n).
@@ -191,7 +189,7 @@ fn v_inf_is_highest_at_n_2_and_rises_with_f_max() {
     }
 }
 
-/// MODEL.md section 7: sigma factors raise `v_inf` by roughly 30-130 %.
+/// docs/model.md section 7: sigma factors raise `v_inf` by roughly 30-130 %.
 /// (The paper, section 7, says "between 55% and 130% in the shown cases";
 /// on this grid the smallest gain is 31 % at level 15, n = 5, the largest
 /// 125 % at level 3, n = 2.)
@@ -227,7 +225,7 @@ fn sigma_factors_raise_v_inf_by_30_to_130_percent() {
     assert!(max.0 > 1.2 && (max.1, max.2) == (3.0, 2), "{max:?}");
 }
 
-/// MODEL.md section 7, paper section 7: "with sigma, odd n start up faster
+/// docs/model.md section 7, paper section 7: "with sigma, odd n start up faster
 /// than their even neighbours" (start-up time `T p_0.99`; at equal `f_max`
 /// the period grows with `n`, `T ∝ n`).
 ///
@@ -277,7 +275,7 @@ fn with_sigma_odd_n_start_up_faster_than_even_neighbours() {
     }
 }
 
-/// MODEL.md section 7, paper section 7: sigma factors raise the smoothness
+/// docs/model.md section 7, paper section 7: sigma factors raise the smoothness
 /// at n = 2, hardly change it at n = 3, and lower it for n >= 4. Also
 /// paper section 7: "increasing n decreases the smoothness" (with and
 /// without sigma) at every level.
@@ -324,7 +322,7 @@ fn sigma_raises_smoothness_at_2_keeps_it_at_3_lowers_it_from_4() {
     }
 }
 
-/// MODEL.md section 7, paper section 7: without sigma the durability is
+/// docs/model.md section 7, paper section 7: without sigma the durability is
 /// lowest at n = 2 (every level); with sigma it is "on average about twice
 /// as high". On this grid the sigma/no-sigma ratio is 2.28-2.36 at n = 2
 /// and 1.59 (level 15, n = 5) to 2.36 over all cases, mean 1.95.
@@ -352,7 +350,7 @@ fn durability_lowest_at_n_2_without_sigma_and_about_doubled_with_sigma() {
     assert!((1.8..=2.2).contains(&mean), "mean ratio {mean}");
 }
 
-/// MODEL.md section 7, paper section 7: the velocity to input power ratio
+/// docs/model.md section 7, paper section 7: the velocity to input power ratio
 /// is "maximal for n = 2 for any f_max" with sigma factors — here the
 /// highest of all 14 cases (n, sigma) of each level.
 #[test]

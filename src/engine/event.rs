@@ -1,4 +1,4 @@
-//! The exact event-driven engine (MODEL.md sections 1 and 8).
+//! The exact event-driven engine (docs/model.md sections 1 and 8).
 //!
 //! ## Method
 //! Between events the slider's acceleration is constant (slip) or equal to
@@ -33,7 +33,7 @@
 //!   whether `v_rel` is zero.
 //! * **What a zero of `v_rel` leads to** is decided by the band piece right
 //!   of the event time: inside the band the slider sticks, above it slips
-//!   forward, below it slips backward (MODEL.md section 1). Detection (when)
+//!   forward, below it slips backward (docs/model.md section 1). Detection (when)
 //!   and decision (what) are separate steps.
 //! * **The departure skip**: after an event that leaves `v_rel = 0` and
 //!   starts a slip (stick -> slip, reversal, grazing without sticking), the

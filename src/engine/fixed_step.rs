@@ -1,4 +1,4 @@
-//! The fixed-step reference integrator (MODEL.md section 1, true stick, no
+//! The fixed-step reference integrator (docs/model.md section 1, true stick, no
 //! smoothing): the method of the paper's section 7, which used 5000 fixed
 //! steps per period of the highest harmonic, made available in the same
 //! program so that its results can be compared indicator by indicator with

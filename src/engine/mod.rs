@@ -1,4 +1,4 @@
-//! Engines walk the slider through time (MODEL.md section 1).
+//! Engines walk the slider through time (docs/model.md section 1).
 //!
 //! * [`event`]: the exact event-driven engine. It finds every stick/slip
 //!   transition and every zero of the relative velocity by root finding on
@@ -48,7 +48,7 @@ impl Direction {
     }
 }
 
-/// The slider's mode (MODEL.md section 1).
+/// The slider's mode (docs/model.md section 1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Mode {
     /// `v_S = v_R`, the slider follows the rod.

@@ -1,4 +1,4 @@
-//! Real roots of real trigonometric polynomials (MODEL.md, section 8).
+//! Real roots of real trigonometric polynomials (docs/model.md, section 8).
 //!
 //! A real trigonometric polynomial of degree `n` is
 //!

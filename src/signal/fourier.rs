@@ -326,7 +326,7 @@ impl FourierSignal {
     }
 
     /// The median of `v_R` over a period: the velocity `m` that the rod
-    /// exceeds for exactly half of the period (MODEL.md section 7: the
+    /// exceeds for exactly half of the period (docs/model.md section 7: the
     /// limit of `v_inf` for very high `kappa`). Bisection on `m`; the time
     /// above `m` is measured exactly on the monotone pieces of `v_R`
     /// between the roots of `a_R`, one bracketed root per piece.

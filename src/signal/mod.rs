@@ -1,4 +1,4 @@
-//! Rod excitation signals `x_R(t)` (MODEL.md section 2, the paper's
+//! Rod excitation signals `x_R(t)` (docs/model.md section 2, the paper's
 //! section 4).
 //!
 //! * [`ideal`]: the ideal signal (11), constant acceleration `a_R = kappa a_0`
@@ -505,7 +505,7 @@ impl Signal {
 
     /// The same signal mirrored: `x_R -> stroke - x_R` is not periodic-start
     /// preserving in general, so the mirror is taken as `x_R -> -x_R`,
-    /// which reverses the direction of motion (MODEL.md section 7).
+    /// which reverses the direction of motion (docs/model.md section 7).
     pub fn mirrored(&self) -> Signal {
         match self {
             Signal::Ideal(s) => Signal::Ideal(s.mirrored()),

@@ -7,7 +7,7 @@ use stickslip::signal::SignalSpec;
 use stickslip::simulation::{self, RunReport};
 use stickslip::{Motor, MotorParams, Scene, Signal};
 
-/// The paper's motor (MODEL.md section 6).
+/// The paper's motor (docs/model.md section 6).
 pub fn paper_motor() -> Motor {
     Motor::default()
 }
@@ -65,4 +65,26 @@ pub fn assert_rel(a: f64, b: f64, rel: f64, what: &str) {
         "{what}: {a:e} vs {b:e} (relative difference {:e} > {rel:e})",
         ((a - b) / b).abs()
     );
+}
+
+/// Path of a file in `tests/data/`.
+pub fn data_path(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests")
+        .join("data")
+        .join(name)
+}
+
+/// The text of a file in `tests/data/`; a missing file fails the test
+/// with its path (no test passes without its data).
+pub fn data_text(name: &str) -> String {
+    let path = data_path(name);
+    std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("test data {} cannot be read: {e}", path.display()))
+}
+
+/// The independent section-7 reference grid (`tests/data/section7_grid.csv`,
+/// provenance in its header).
+pub fn reference_grid_text() -> String {
+    data_text("section7_grid.csv")
 }
