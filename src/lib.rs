@@ -19,6 +19,7 @@
 //! 5. [`report`] prints text or JSON.
 
 pub mod check;
+pub mod cli;
 pub mod engine;
 pub mod error;
 pub mod indicators;

@@ -1,0 +1,28 @@
+//! `stickslip check [SCENE] [--steps ...]`: the event engine against the
+//! fixed-step reference at several resolutions.
+
+use super::run::load;
+use super::{Failure, Streams, write_out};
+use clap::Args;
+use std::path::PathBuf;
+
+/// Arguments of `check`.
+#[derive(Args)]
+pub(crate) struct CheckArgs {
+    /// Scene file (TOML); omitted: the built-in default scene.
+    scene: Option<PathBuf>,
+    /// Resolutions: steps per period of the highest harmonic, comma separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_parser = clap::value_parser!(u32).range(1..),
+        default_values_t = crate::check::DEFAULT_STEPS
+    )]
+    steps: Vec<u32>,
+}
+
+pub(crate) fn check(args: CheckArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
+    let scene = load(args.scene.as_deref())?;
+    let report = crate::check::check(&scene, &args.steps).map_err(|e| e.to_string())?;
+    write_out(streams, &report.to_text())
+}

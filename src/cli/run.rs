@@ -1,0 +1,47 @@
+//! `stickslip run [SCENE] [--json] [-o FILE]`: one run of a scene, printed
+//! as a summary or as one JSON object (keys in `docs/interface.md`).
+
+use super::{Failure, Streams, write_out};
+use crate::{Scene, report, simulation};
+use clap::Args;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `run`.
+#[derive(Args, Default)]
+pub(crate) struct RunArgs {
+    /// Scene file (TOML); omitted: the built-in default scene.
+    scene: Option<PathBuf>,
+    /// Print one JSON object instead of the summary.
+    #[arg(long)]
+    json: bool,
+    /// Write the output to this file (atomically, only after the run
+    /// succeeded) instead of standard output.
+    #[arg(long, short)]
+    output: Option<PathBuf>,
+}
+
+/// A scene file, or the built-in default scene.
+pub(crate) fn load(path: Option<&Path>) -> Result<Scene, Failure> {
+    match path {
+        Some(p) => Scene::from_path(p).map_err(|e| e.to_string()),
+        None => Ok(Scene::default()),
+    }
+}
+
+pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
+    let scene = load(args.scene.as_deref())?;
+    let result = simulation::run(&scene).map_err(|e| e.to_string())?;
+    let text = if args.json {
+        let mut text =
+            serde_json::to_string_pretty(&report::to_json(&result)).map_err(|e| e.to_string())?;
+        text.push('\n');
+        text
+    } else {
+        report::to_text(&result)
+    };
+    match args.output {
+        Some(path) => crate::output::write_atomically(&path, text.as_bytes())
+            .map_err(|e| format!("cannot write {}: {e}", path.display())),
+        None => write_out(streams, &text),
+    }
+}
