@@ -28,6 +28,7 @@ pub mod observer;
 pub mod output;
 pub mod plot;
 pub mod power;
+pub mod provenance;
 pub mod report;
 pub mod scene;
 pub mod signal;
