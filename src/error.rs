@@ -8,10 +8,11 @@
 use std::fmt;
 use thiserror::Error;
 
-/// A number as messages print it: plain for everyday magnitudes
-/// (`0.2`, `-3`, `1574.8`), scientific below `1e-4` and from `1e9` on
-/// (`5e-324`, `2.5e-5`, `1e300`), so that no message spells out hundreds of
-/// zeros. Every `f64` in an error message goes through it.
+/// A number as messages print it: plain for everyday magnitudes and for
+/// integers below `1e16` (`0.2`, `-3`, `1574.8`, `4294967295`), scientific
+/// otherwise (`5e-324`, `2.5e-5`, `1.5e9`, `1e300`), so that no message
+/// spells out hundreds of zeros. Every `f64` in an error message goes
+/// through it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Num(pub f64);
 
@@ -19,7 +20,8 @@ impl fmt::Display for Num {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let x = self.0;
         let magnitude = x.abs();
-        if x == 0.0 || !x.is_finite() || (1e-4..1e9).contains(&magnitude) {
+        let integer = x.fract() == 0.0 && magnitude < 1e16;
+        if integer || !x.is_finite() || (1e-4..1e9).contains(&magnitude) {
             write!(f, "{x}")
         } else {
             write!(f, "{x:e}")
