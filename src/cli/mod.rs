@@ -79,7 +79,9 @@ where
     let cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => {
-            let text = e.render().ansi().to_string();
+            // Plain text: the error stream may be a file or a pipe, where colour
+            // codes would be noise.
+            let text = e.render().to_string();
             let exit = e.exit_code();
             let target: &mut dyn Write = if e.use_stderr() {
                 &mut *streams.err
