@@ -137,7 +137,12 @@ pub(crate) struct SceneOptions {
     pub(crate) quiet: bool,
     /// Wall-clock budget of each simulation, in seconds; overrides the
     /// scene's [run] time_limit_s.
-    #[arg(long, value_name = "SECONDS", value_parser = parse_time_limit)]
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        allow_negative_numbers = true,
+        value_parser = parse_time_limit
+    )]
     pub(crate) time_limit: Option<f64>,
 }
 
