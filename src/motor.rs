@@ -65,7 +65,10 @@ impl Motor {
             return Err(ParamError::out_of_range(
                 "motor.mu_dynamic",
                 params.mu_dynamic,
-                format!("must not exceed motor.mu_static = {}", Num(params.mu_static)),
+                format!(
+                    "must not exceed motor.mu_static = {}",
+                    Num(params.mu_static)
+                ),
             ));
         }
         let a_0 = params.mu_static * params.contact_force / params.slider_mass;

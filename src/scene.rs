@@ -402,8 +402,8 @@ pub struct RunSettings {
     /// its steady state beside the period map's, as a cross-check. Without
     /// it the start-up stops at `p_0.99`, which is all the indicators need.
     pub verify_steady_state: bool,
-    /// Wall-clock budget of each simulation of the scene, s (finite,
-    /// > 0): a run still going when it runs out stops with
+    /// Wall-clock budget of each simulation of the scene, in seconds,
+    /// finite and positive: a run still going when it runs out stops with
     /// [`crate::error::SimulationError::TimeLimit`], naming how far it got.
     /// `None`: no budget.
     pub time_limit_s: Option<f64>,

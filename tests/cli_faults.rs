@@ -25,7 +25,10 @@ fn stderr(o: &Output) -> String {
 
 /// A fresh folder for one test's files.
 fn temp_dir(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stickslip-cli-faults-{}-{test}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!(
+        "stickslip-cli-faults-{}-{test}",
+        std::process::id()
+    ));
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
@@ -200,7 +203,9 @@ fn work_limit_8_9_fixed_engine_with_absurd_steps_is_refused() {
     assert_eq!(o.status.code(), Some(1));
     let err = stderr(&o);
     assert!(
-        err.contains("run.steps_per_harmonic = 4294967295: gives 8589934590 fixed steps per period"),
+        err.contains(
+            "run.steps_per_harmonic = 4294967295: gives 8589934590 fixed steps per period"
+        ),
         "{err}"
     );
     std::fs::remove_dir_all(dir).unwrap();
@@ -259,7 +264,11 @@ fn plausibility_warnings_8_7_on_stderr_and_the_run_goes_on() {
         let o = stickslip()
             .arg(command)
             .arg(&scene)
-            .args(if command == "check" { &["--steps", "50"][..] } else { &["--json"][..] })
+            .args(if command == "check" {
+                &["--steps", "50"][..]
+            } else {
+                &["--json"][..]
+            })
             .output()
             .unwrap();
         assert!(o.status.success(), "{}", stderr(&o));
@@ -298,7 +307,10 @@ fn usage_errors_16_10_say_what_was_wrong_and_exit_2() {
         let err = stderr(&o);
         assert_eq!(err.lines().next(), Some(first_line), "{err}");
         // Clap's usage text follows, without colour codes.
-        assert!(err.contains("Usage: stickslip") || err.contains("--help"), "{err}");
+        assert!(
+            err.contains("Usage: stickslip") || err.contains("--help"),
+            "{err}"
+        );
         assert!(!err.contains('\u{1b}'), "{err}");
         assert!(o.stdout.is_empty());
     }

@@ -3,6 +3,8 @@
 //! point at the input, and the size of input files. One test per fixed
 //! defect, named after its item.
 
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
 use stickslip::error::{Error, Num, ParamError, SceneError, SimulationError};
 use stickslip::observer::MAX_LOGGED_EVENTS;
 use stickslip::scene::{
@@ -10,8 +12,6 @@ use stickslip::scene::{
 };
 use stickslip::signal::SignalSpec;
 use stickslip::simulation;
-use std::path::PathBuf;
-use std::time::{Duration, Instant};
 
 fn parse(text: &str) -> Result<Scene, SceneError> {
     Scene::from_toml_str(text, "<string>")
@@ -256,10 +256,7 @@ fn messages_8_10_numbers_print_in_scientific_notation() {
     // kappa = 1e-320 with the paper's a_0 = 124 m/s^2: a_R is subnormal and
     // T = sqrt(2 x_Rmax / a_R) overflows. The message once printed a_R
     // with 318 zeros.
-    let scene = parse(
-        "[signal]\nkind = \"ideal\"\nstroke = 25e-6\nkappa = 1e-320\n",
-    )
-    .unwrap();
+    let scene = parse("[signal]\nkind = \"ideal\"\nstroke = 25e-6\nkappa = 1e-320\n").unwrap();
     let e = simulation::build(&scene).unwrap_err().to_string();
     assert!(e.contains("e-318 m/s^2 gives the period T = inf s"), "{e}");
     assert!(!e.contains("00000000"), "{e}");
@@ -271,7 +268,10 @@ fn messages_8_10_toml_syntax_error_names_the_key_and_shows_the_line() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("motor.slider_mass: "), "{e}");
-    assert!(e.contains("(line 2, column 15: `slider_mass = = 1`)"), "{e}");
+    assert!(
+        e.contains("(line 2, column 15: `slider_mass = = 1`)"),
+        "{e}"
+    );
     let e = parse("[signal]\nkind = \"fourier\"\nharmonics 2\n")
         .unwrap_err()
         .to_string();
@@ -285,7 +285,10 @@ fn input_size_16_8_large_file_refused_with_its_size() {
     // Newlines only: valid TOML (an empty scene) at any length.
     let limit = usize::try_from(MAX_INPUT_BYTES).unwrap();
     let at_limit = temp_file("at_limit.toml", &vec![b'\n'; limit]);
-    assert_eq!(Scene::from_path(&at_limit).unwrap().signal, SignalSpec::paper_default());
+    assert_eq!(
+        Scene::from_path(&at_limit).unwrap().signal,
+        SignalSpec::paper_default()
+    );
     let over = temp_file("over.toml", &vec![b'\n'; 50 << 20]);
     let e = Scene::from_path(&over).unwrap_err().to_string();
     assert!(

@@ -26,8 +26,7 @@ pub(crate) struct CheckArgs {
 pub(crate) fn check(args: CheckArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
     let mut scene = load(args.scene.as_deref())?;
     for s in &args.steps {
-        crate::scene::check_fixed_steps(&scene.signal, *s, "--steps")
-            .map_err(|e| e.to_string())?;
+        crate::scene::check_fixed_steps(&scene.signal, *s, "--steps").map_err(|e| e.to_string())?;
     }
     args.options.apply(&mut scene, streams);
     let report = crate::check::check(&scene, &args.steps).map_err(|e| e.to_string())?;

@@ -169,8 +169,7 @@ fn parse_time_limit(text: &str) -> Result<f64, String> {
         .trim()
         .parse()
         .map_err(|_| format!("\"{text}\" is not a number of seconds"))?;
-    crate::error::ParamError::positive("--time-limit", value)
-        .map_err(|e| e.to_string())
+    crate::error::ParamError::positive("--time-limit", value).map_err(|e| e.to_string())
 }
 
 /// Refuses to write `output` when it is one of `inputs`: the same file by

@@ -427,7 +427,10 @@ impl FourierSignal {
         if actual.is_nan() || actual <= 0.0 {
             return Err(ParamError::Inconsistent {
                 field: "signal".to_owned(),
-                reason: format!("the signal has no stroke to scale (max - min = {} m)", Num(actual)),
+                reason: format!(
+                    "the signal has no stroke to scale (max - min = {} m)",
+                    Num(actual)
+                ),
             });
         }
         let f = stroke / actual;
