@@ -10,7 +10,7 @@
 //!   first line says what was wrong;
 //! * output files are written atomically (all or nothing), and an output
 //!   path that is one of the command's inputs is refused
-//!   ([`refuse_output_over_input`]);
+//!   (`refuse_output_over_input`);
 //! * results go to the output stream through one function that treats a
 //!   closed pipe (`stickslip run --json | head -c 10`) as the end of the
 //!   reader's interest: the command stops quietly with exit 0, as `cat` or
