@@ -156,10 +156,16 @@ impl SceneOptions {
             scene.run.time_limit_s = Some(limit);
         }
         if !self.quiet {
-            for warning in scene.warnings() {
-                let _ = writeln!(streams.err, "stickslip: warning: {warning}");
-            }
+            print_warnings(scene, streams);
         }
+    }
+}
+
+/// Prints a scene's warnings ([`crate::Scene::warnings`]) on the error
+/// stream, one line each: `stickslip: warning: <field> = <value> ...`.
+pub(crate) fn print_warnings(scene: &crate::Scene, streams: &mut Streams<'_>) {
+    for warning in scene.warnings() {
+        let _ = writeln!(streams.err, "stickslip: warning: {warning}");
     }
 }
 
