@@ -5,13 +5,35 @@
 //! spelled in a scene file (`motor.slider_mass`, `signal.harmonics`) and the
 //! value, so that a message can be acted on without reading the code.
 
+use std::fmt;
 use thiserror::Error;
+
+/// A number as messages print it: plain for everyday magnitudes and for
+/// integers below `1e16` (`0.2`, `-3`, `1574.8`, `4294967295`), scientific
+/// otherwise (`5e-324`, `2.5e-5`, `1.5e9`, `1e300`), so that no message
+/// spells out hundreds of zeros. Every `f64` in an error message goes
+/// through it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Num(pub f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let x = self.0;
+        let magnitude = x.abs();
+        let integer = x.fract() == 0.0 && magnitude < 1e16;
+        if integer || !x.is_finite() || (1e-4..1e9).contains(&magnitude) {
+            write!(f, "{x}")
+        } else {
+            write!(f, "{x:e}")
+        }
+    }
+}
 
 /// An invalid parameter value, named by its scene path.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum ParamError {
     /// NaN or infinite.
-    #[error("{field} = {value}: must be a finite number")]
+    #[error("{field} = {}: must be a finite number", Num(*value))]
     NonFinite {
         /// Scene path of the field.
         field: String,
@@ -19,7 +41,7 @@ pub enum ParamError {
         value: f64,
     },
     /// Zero or negative where a positive value is required.
-    #[error("{field} = {value}: must be positive")]
+    #[error("{field} = {}: must be positive", Num(*value))]
     NotPositive {
         /// Scene path of the field.
         field: String,
@@ -27,7 +49,7 @@ pub enum ParamError {
         value: f64,
     },
     /// Outside its allowed range.
-    #[error("{field} = {value}: {requirement}")]
+    #[error("{field} = {}: {requirement}", Num(*value))]
     OutOfRange {
         /// Scene path of the field.
         field: String,
@@ -119,8 +141,8 @@ pub enum SimulationError {
     /// More events in one period than the engine allows: the motion
     /// chatters (Zeno behaviour) at the given place.
     #[error(
-        "more than {limit} events in period {period} (last at phase {phase} s): \
-         the motion chatters"
+        "more than {limit} events in period {period} (last at phase {} s): \
+         the motion chatters", Num(*phase)
     )]
     TooManyEvents {
         /// The per-period event limit.
@@ -129,6 +151,20 @@ pub enum SimulationError {
         period: u64,
         /// Phase of the last event in that period, s.
         phase: f64,
+    },
+    /// The wall-clock budget (`run.time_limit_s` or `--time-limit`) ran
+    /// out before the run finished.
+    #[error(
+        "time limit of {} s reached after {period} simulated periods; the run \
+         stopped there (raise run.time_limit_s or --time-limit to let it go on)",
+        Num(*seconds)
+    )]
+    TimeLimit {
+        /// The budget, s.
+        seconds: f64,
+        /// Periods simulated when the budget ran out (period-map
+        /// evaluations included): how far the run got.
+        period: u64,
     },
     /// The signal's event structure could not be computed.
     #[error("signal analysis failed: {0}")]

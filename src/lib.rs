@@ -18,6 +18,7 @@
 //!    [`power`] adds the electrical input power (section 6.3);
 //! 5. [`report`] prints text or JSON.
 
+pub mod budget;
 pub mod check;
 pub mod cli;
 pub mod engine;

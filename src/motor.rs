@@ -12,7 +12,7 @@
 //! parameters ([`Motor::new`]); its fields are private so that it cannot
 //! hold `mu_d > mu_0` or a non-positive mass.
 
-use crate::error::ParamError;
+use crate::error::{Num, ParamError};
 
 /// Physical parameters of the motor, as given in a scene (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -65,20 +65,18 @@ impl Motor {
             return Err(ParamError::out_of_range(
                 "motor.mu_dynamic",
                 params.mu_dynamic,
-                format!("must not exceed motor.mu_static = {}", params.mu_static),
+                format!(
+                    "must not exceed motor.mu_static = {}",
+                    Num(params.mu_static)
+                ),
             ));
         }
         let a_0 = params.mu_static * params.contact_force / params.slider_mass;
         let a_d = params.mu_dynamic * params.contact_force / params.slider_mass;
-        for (field, value) in [("motor.mu_static", a_0), ("motor.mu_dynamic", a_d)] {
-            if !value.is_finite() {
-                return Err(ParamError::out_of_range(
-                    field,
-                    value,
-                    "gives a non-finite friction acceleration mu F_c / m_s",
-                ));
-            }
+        if !a_0.is_finite() {
+            return Err(overflow(&params, a_0));
         }
+        // a_d <= a_0, so a_d is finite too.
         Ok(Self { params, a_0, a_d })
     }
 
@@ -131,6 +129,53 @@ impl Motor {
     pub fn mu_d(&self) -> f64 {
         self.params.mu_dynamic
     }
+}
+
+/// The error for a break-away acceleration `a_0 = mu_0 F_c / m_s` that
+/// overflows, blamed on the input that makes it overflow: the mass when
+/// `mu_0 F_c` is finite (a tiny `m_s`), else the larger of `mu_0` and `F_c`.
+fn overflow(params: &MotorParams, a_0: f64) -> ParamError {
+    let numerator = params.mu_static * params.contact_force;
+    let (field, value, others) = if numerator.is_finite() {
+        (
+            "motor.slider_mass",
+            params.slider_mass,
+            format!(
+                "motor.mu_static = {} and motor.contact_force = {}",
+                Num(params.mu_static),
+                Num(params.contact_force)
+            ),
+        )
+    } else if params.contact_force >= params.mu_static {
+        (
+            "motor.contact_force",
+            params.contact_force,
+            format!(
+                "motor.mu_static = {} and motor.slider_mass = {}",
+                Num(params.mu_static),
+                Num(params.slider_mass)
+            ),
+        )
+    } else {
+        (
+            "motor.mu_static",
+            params.mu_static,
+            format!(
+                "motor.contact_force = {} and motor.slider_mass = {}",
+                Num(params.contact_force),
+                Num(params.slider_mass)
+            ),
+        )
+    };
+    ParamError::out_of_range(
+        field,
+        value,
+        format!(
+            "with {others} gives the break-away acceleration a_0 = mu_0 F_c / m_s = {} m/s^2, \
+             which is not representable",
+            Num(a_0)
+        ),
+    )
 }
 
 impl Default for Motor {

@@ -129,11 +129,19 @@ impl<O: Observer + ?Sized> Observer for &mut O {
     }
 }
 
-/// Records every event (the event log).
+/// Most events an [`EventLog`] keeps (10^5, a few MB; about 10 MB of
+/// JSON): a long start-up (millions of periods) would otherwise fill the
+/// memory. The events after these are counted, not kept.
+pub const MAX_LOGGED_EVENTS: usize = 100_000;
+
+/// Records the first [`MAX_LOGGED_EVENTS`] events (the event log) and counts
+/// the rest.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct EventLog {
     /// Events in time order.
     pub events: Vec<Event>,
+    /// Events seen after the log was full.
+    pub omitted: u64,
 }
 
 impl Observer for EventLog {
@@ -141,7 +149,11 @@ impl Observer for EventLog {
         false
     }
     fn event(&mut self, event: &Event) {
-        self.events.push(*event);
+        if self.events.len() < MAX_LOGGED_EVENTS {
+            self.events.push(*event);
+        } else {
+            self.omitted += 1;
+        }
     }
 }
 

@@ -151,6 +151,7 @@ pub fn to_json(r: &RunReport) -> Value {
             })
             .collect();
         m.insert("event_log".into(), Value::Array(events));
+        m.insert("event_log_omitted".into(), json!(r.event_log_omitted));
     }
     if let Some(segments) = &r.trajectory {
         let rows: Vec<Value> = segments

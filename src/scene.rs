@@ -54,6 +54,8 @@
 //! max_periods = 1000000       # transient limit, >= 1               (default 1000000)
 //! verify_steady_state = false # run the start-up to convergence and cross-check
 //!                             # it against the period map's steady state (default false)
+//! time_limit_s = 60.0         # wall-clock budget of each simulation, s, > 0
+//!                             # (default: none); `--time-limit` overrides it
 //!
 //! [outputs]                   # optional
 //! indicators = ["v_inf", "startup_time", "smoothness", "durability",
@@ -81,6 +83,20 @@
 //!   the signal *is* without the paper's modification (15); the paper's
 //!   default scene sets it explicitly.
 //!
+//! # Limits and warnings
+//!
+//! * A scene file larger than [`MAX_INPUT_BYTES`] (1 MiB) is refused with
+//!   its size, before it is parsed; files are read through
+//!   [`read_input`], which stops reading at the limit, so that endless
+//!   inputs (`/dev/zero`) are refused too.
+//! * With `engine = "fixed"`, `n x steps_per_harmonic` steps per period
+//!   above [`MAX_FIXED_STEPS_PER_PERIOD`] are refused: one period alone
+//!   would take seconds, and a run simulates many.
+//! * [`Scene::warnings`] lists values that are valid but implausible for a
+//!   piezo inertia drive (usually a unit slip, `stroke = 25` for 25 um);
+//!   the command line prints them on stderr and runs on. The bounds are
+//!   the `PLAUSIBLE_*` constants.
+//!
 //! # Errors
 //!
 //! Malformed TOML, unknown fields and values of the wrong type give
@@ -90,12 +106,13 @@
 //! (`motor.slider_mass = -1: must be positive`). An unreadable file gives
 //! [`SceneError::Io`].
 
-use crate::error::{ParamError, SceneError};
+use crate::error::{Num, ParamError, SceneError};
 use crate::motor::{Motor, MotorParams};
 use crate::power::ActuatorParams;
 use crate::signal::{IdealShape, MAX_HARMONICS, SignalSpec};
 use serde::{Deserialize, Serialize};
 use std::fmt;
+use std::io::Read;
 use std::ops::Range;
 use std::path::Path;
 use std::str::FromStr;
@@ -245,6 +262,9 @@ pub struct RunTable {
     /// and cross-check the two (default false: stop at `p_0.99`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub verify_steady_state: Option<bool>,
+    /// Wall-clock budget of each simulation, s.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time_limit_s: Option<f64>,
 }
 
 /// The `[outputs]` table.
@@ -369,7 +389,7 @@ impl FromStr for Indicator {
 }
 
 /// How to run a scene.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunSettings {
     /// Which engine.
     pub engine: EngineKind,
@@ -382,19 +402,110 @@ pub struct RunSettings {
     /// its steady state beside the period map's, as a cross-check. Without
     /// it the start-up stops at `p_0.99`, which is all the indicators need.
     pub verify_steady_state: bool,
+    /// Wall-clock budget of each simulation of the scene, in seconds,
+    /// finite and positive: a run still going when it runs out stops with
+    /// [`crate::error::SimulationError::TimeLimit`], naming how far it got.
+    /// `None`: no budget.
+    pub time_limit_s: Option<f64>,
 }
 
 impl Default for RunSettings {
     /// The event engine; 5000 steps per harmonic; 1 000 000 periods; no
-    /// cross-check of the steady state.
+    /// cross-check of the steady state; no time limit.
     fn default() -> Self {
         Self {
             engine: EngineKind::Event,
             steps_per_harmonic: 5000,
             max_periods: 1_000_000,
             verify_steady_state: false,
+            time_limit_s: None,
         }
     }
+}
+
+/// Largest scene or sweep file read, in bytes (1 MiB): far above any real
+/// scene (a few hundred bytes; a 256-harmonic series about 10 kB) and small
+/// enough that reading and parsing it takes milliseconds.
+pub const MAX_INPUT_BYTES: u64 = 1 << 20;
+
+/// Largest number of fixed-step steps per period, `n x steps_per_harmonic`
+/// (10^8, about a second of work per period): the paper's 5000 steps per
+/// harmonic at `n = 256` are 1.28e6, `stickslip check`'s finest default
+/// resolution 1.28e7. A run simulates at least a few periods, usually
+/// hundreds, so more steps than this are refused up front.
+pub const MAX_FIXED_STEPS_PER_PERIOD: u64 = 100_000_000;
+
+/// Reads a text input file (scene or sweep) of at most [`MAX_INPUT_BYTES`],
+/// reading no more than one byte past the limit whatever the file is, so
+/// that `/dev/zero` or a huge file is refused quickly and without memory.
+/// A file over the limit is an [`std::io::ErrorKind::InvalidData`] error
+/// whose message gives its size (or "more than", for a stream) and the
+/// limit; so is text that is not UTF-8.
+pub fn read_input(path: &Path) -> std::io::Result<String> {
+    let file = std::fs::File::open(path)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_INPUT_BYTES + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        let size = std::fs::metadata(path)
+            .ok()
+            .filter(|m| m.is_file())
+            .map_or_else(
+                || format!("more than {MAX_INPUT_BYTES} bytes"),
+                |m| format!("{} bytes", m.len()),
+            );
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "the file holds {size}; input files are limited to {MAX_INPUT_BYTES} bytes (1 MiB)"
+            ),
+        ));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "not UTF-8 text (invalid byte at offset {})",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })
+}
+
+/// Steps per period the fixed-step engine takes for `signal`:
+/// `n x steps_per_harmonic`, with `n` the number of harmonics (1 for the
+/// ideal signal), as [`crate::engine::fixed_step::FixedStepEngine::steps_for`]
+/// counts them on the built signal.
+pub fn fixed_steps_per_period(signal: &SignalSpec, steps_per_harmonic: u32) -> u64 {
+    let harmonics = match signal {
+        SignalSpec::Ideal(_) => 1,
+        SignalSpec::Fourier { harmonics, .. } => *harmonics,
+        SignalSpec::Harmonics { amplitudes, .. } => amplitudes.len().max(1),
+    };
+    harmonics as u64 * u64::from(steps_per_harmonic)
+}
+
+/// Refuses fixed-step resolutions whose work per period exceeds
+/// [`MAX_FIXED_STEPS_PER_PERIOD`]; `field` names where the resolution came
+/// from (`run.steps_per_harmonic`, `--steps`).
+pub fn check_fixed_steps(
+    signal: &SignalSpec,
+    steps_per_harmonic: u32,
+    field: &str,
+) -> Result<(), ParamError> {
+    let per_period = fixed_steps_per_period(signal, steps_per_harmonic);
+    if per_period > MAX_FIXED_STEPS_PER_PERIOD {
+        return Err(ParamError::out_of_range(
+            field,
+            f64::from(steps_per_harmonic),
+            format!(
+                "gives {} fixed steps per period (n x steps_per_harmonic), above the limit of \
+                 {} (about a second per period, and a run simulates many periods)",
+                Num(per_period as f64),
+                Num(MAX_FIXED_STEPS_PER_PERIOD as f64)
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// What a run records and reports.
@@ -463,7 +574,7 @@ impl Scene {
     /// Reads, parses and validates a scene file.
     pub fn from_path(path: &Path) -> Result<Scene, SceneError> {
         let origin = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        let text = read_input(path).map_err(|source| SceneError::Io {
             path: origin.clone(),
             source,
         })?;
@@ -493,6 +604,16 @@ impl Scene {
                 "must be at least 1",
             ));
         }
+        if self.run.engine == EngineKind::Fixed {
+            check_fixed_steps(
+                &self.signal,
+                self.run.steps_per_harmonic,
+                "run.steps_per_harmonic",
+            )?;
+        }
+        if let Some(limit) = self.run.time_limit_s {
+            ParamError::positive("run.time_limit_s", limit)?;
+        }
         if self.run.max_periods == 0 {
             return Err(ParamError::out_of_range(
                 "run.max_periods",
@@ -517,6 +638,199 @@ impl Scene {
             }
         }
         Ok(())
+    }
+}
+
+/// Plausible strokes (and harmonic amplitudes) of a piezo inertia drive, m:
+/// 1 nm to 1 mm (the paper's is 25 um).
+pub const PLAUSIBLE_STROKE: (f64, f64) = (1e-9, 1e-3);
+/// Highest plausible fundamental frequency, Hz (10 MHz; the paper's drive
+/// runs at 1.6 kHz, piezo stacks resonate below 1 MHz).
+pub const PLAUSIBLE_MAX_FREQUENCY: f64 = 10e6;
+/// Plausible slider masses, kg: 1 mg to 10 kg (the paper's is 1.4 g).
+pub const PLAUSIBLE_SLIDER_MASS: (f64, f64) = (1e-6, 10.0);
+/// Highest plausible contact force, N (1 kN; the paper's is 1 N).
+pub const PLAUSIBLE_MAX_CONTACT_FORCE: f64 = 1e3;
+/// Highest plausible friction coefficient (dry friction of solids lies
+/// below about 1.5; the paper's mu_0 is 0.17).
+pub const PLAUSIBLE_MAX_FRICTION: f64 = 2.0;
+/// Highest plausible `kappa = a_R / a_0` (the paper's figures use 1 to
+/// about 400): a slider gains at most `a_0 T`, a `1 / (kappa duty)` part of
+/// the rod's peak velocity, per period, so beyond this the start-up from
+/// rest takes very many periods.
+pub const PLAUSIBLE_MAX_KAPPA: f64 = 1e4;
+
+/// A value that is valid but implausible for a piezo inertia drive,
+/// usually a unit slip. Displayed as one line:
+/// `signal.stroke = 25 m is above 1 mm; strokes are in metres (25 um = 25e-6)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Warning {
+    /// Scene path of the field.
+    pub field: String,
+    /// The value given.
+    pub value: f64,
+    /// Its unit, as printed after the value (empty for a ratio).
+    pub unit: &'static str,
+    /// What is implausible and what was probably meant.
+    pub reason: String,
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} = {}", self.field, Num(self.value))?;
+        if !self.unit.is_empty() {
+            write!(f, " {}", self.unit)?;
+        }
+        write!(f, " {}", self.reason)
+    }
+}
+
+impl Scene {
+    /// Values that are valid but implausible for a piezo inertia drive
+    /// (bounds: the `PLAUSIBLE_*` constants), in field order. A run goes on
+    /// regardless; the command line prints these on stderr unless
+    /// `--quiet`.
+    pub fn warnings(&self) -> Vec<Warning> {
+        let mut out = Vec::new();
+        let mut warn = |field: &str, value: f64, unit: &'static str, reason: String| {
+            out.push(Warning {
+                field: field.to_owned(),
+                value,
+                unit,
+                reason,
+            });
+        };
+        let m = &self.motor;
+        let (mass_lo, mass_hi) = PLAUSIBLE_SLIDER_MASS;
+        if m.slider_mass > mass_hi {
+            warn(
+                "motor.slider_mass",
+                m.slider_mass,
+                "kg",
+                "is above 10 kg; masses are in kg (1.4 g = 1.4e-3)".to_owned(),
+            );
+        } else if m.slider_mass < mass_lo {
+            warn(
+                "motor.slider_mass",
+                m.slider_mass,
+                "kg",
+                "is below 1 mg; masses are in kg (1.4 g = 1.4e-3)".to_owned(),
+            );
+        }
+        if m.contact_force > PLAUSIBLE_MAX_CONTACT_FORCE {
+            warn(
+                "motor.contact_force",
+                m.contact_force,
+                "N",
+                "is above 1 kN; forces are in N (a piezo inertia drive presses with a few N)"
+                    .to_owned(),
+            );
+        }
+        for (field, mu) in [
+            ("motor.mu_static", m.mu_static),
+            ("motor.mu_dynamic", m.mu_dynamic),
+        ] {
+            if mu > PLAUSIBLE_MAX_FRICTION {
+                warn(
+                    field,
+                    mu,
+                    "",
+                    "is above 2; friction coefficients of dry contacts lie between about 0.05 and 1"
+                        .to_owned(),
+                );
+            }
+        }
+        let stroke_warning = |value: f64, noun: &str| {
+            let (lo, hi) = PLAUSIBLE_STROKE;
+            let bound = if value > hi {
+                "above 1 mm"
+            } else if value < lo {
+                "below 1 nm"
+            } else {
+                return None;
+            };
+            Some(format!(
+                "is {bound}; {noun} are in metres ({} um = {}e-6)",
+                Num(value),
+                Num(value)
+            ))
+        };
+        match &self.signal {
+            SignalSpec::Ideal(shape) | SignalSpec::Fourier { shape, .. } => {
+                if let Some(reason) = stroke_warning(shape.stroke, "strokes") {
+                    warn("signal.stroke", shape.stroke, "m", reason);
+                }
+                if shape.kappa > PLAUSIBLE_MAX_KAPPA {
+                    warn(
+                        "signal.kappa",
+                        shape.kappa,
+                        "",
+                        format!(
+                            "is above {}: a slider gains at most 1/(kappa duty) of the rod's \
+                             peak velocity per period, so the start-up may take of the order \
+                             of {} periods (run.max_periods = {}; run.time_limit_s bounds the run)",
+                            Num(PLAUSIBLE_MAX_KAPPA),
+                            Num((shape.kappa * shape.duty).round()),
+                            self.run.max_periods
+                        ),
+                    );
+                }
+                if let Ok(motor) = Motor::new(self.motor) {
+                    let (_, period) = shape.times(&motor);
+                    let f0 = 1.0 / period;
+                    if f0 > PLAUSIBLE_MAX_FREQUENCY {
+                        warn(
+                            "signal.stroke",
+                            shape.stroke,
+                            "m",
+                            format!(
+                                "with signal.kappa = {} and a_0 = {} m/s^2 gives the \
+                                 frequency f_0 = {} Hz, above 10 MHz; check the units of \
+                                 the stroke (m), the motor and kappa",
+                                Num(shape.kappa),
+                                Num(motor.a_0()),
+                                Num(f0)
+                            ),
+                        );
+                    }
+                }
+            }
+            SignalSpec::Harmonics {
+                frequency,
+                amplitudes,
+                scale_to_stroke,
+                ..
+            } => {
+                if *frequency > PLAUSIBLE_MAX_FREQUENCY {
+                    warn(
+                        "signal.frequency",
+                        *frequency,
+                        "Hz",
+                        "is above 10 MHz; frequencies are in Hz (1.6 kHz = 1600)".to_owned(),
+                    );
+                }
+                match scale_to_stroke {
+                    Some(stroke) => {
+                        if let Some(reason) = stroke_warning(*stroke, "strokes") {
+                            warn("signal.stroke", *stroke, "m", reason);
+                        }
+                    }
+                    None => {
+                        for (k, d) in amplitudes.iter().enumerate() {
+                            if *d > PLAUSIBLE_STROKE.1 {
+                                warn(
+                                    &format!("signal.amplitudes[{k}]"),
+                                    *d,
+                                    "m",
+                                    stroke_warning(*d, "amplitudes").unwrap_or_default(),
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        out
     }
 }
 
@@ -600,6 +914,7 @@ impl From<&Scene> for SceneFile {
                 steps_per_harmonic: Some(i64::from(scene.run.steps_per_harmonic)),
                 max_periods: Some(i64::try_from(scene.run.max_periods).unwrap_or(i64::MAX)),
                 verify_steady_state: Some(scene.run.verify_steady_state),
+                time_limit_s: scene.run.time_limit_s,
             }),
             outputs: Some(OutputsTable {
                 indicators: Some(
@@ -673,7 +988,7 @@ fn kappa(kappa: Option<f64>, sqrt_kappa: Option<f64>) -> Result<f64, ParamError>
                 Err(ParamError::out_of_range(
                     "signal.sqrt_kappa",
                     s,
-                    format!("its square kappa = {k} must be positive and finite"),
+                    format!("its square kappa = {} must be positive and finite", Num(k)),
                 ))
             }
         }
@@ -798,6 +1113,7 @@ fn run_settings(table: Option<RunTable>) -> Result<RunSettings, ParamError> {
         verify_steady_state: t
             .verify_steady_state
             .unwrap_or(defaults.verify_steady_state),
+        time_limit_s: t.time_limit_s,
     })
 }
 
@@ -832,7 +1148,9 @@ fn outputs(
 }
 
 /// One line from a TOML error: the field path (found from the error's span
-/// in the parsed document), the parser's message, and line and column.
+/// in the parsed document or, when the text does not parse, from the
+/// offending line and the table above it), the parser's message, line and
+/// column, and the offending line itself.
 fn parse_message(text: &str, error: &toml::de::Error) -> String {
     let message = error
         .message()
@@ -848,10 +1166,57 @@ fn parse_message(text: &str, error: &toml::de::Error) -> String {
     let before = text.get(..start).unwrap_or("");
     let line = before.matches('\n').count() + 1;
     let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    match field_path(text, &span) {
-        Some(path) => format!("{path}: {message} (line {line}, column {column})"),
-        None => format!("{message} (line {line}, column {column})"),
+    let shown = shown_line(text, line);
+    match field_path(text, &span).or_else(|| key_on_line(text, line)) {
+        Some(path) => format!("{path}: {message} (line {line}, column {column}: {shown})"),
+        None => format!("{message} (line {line}, column {column}: {shown})"),
     }
+}
+
+/// Longest excerpt of an offending line shown in a message, in characters.
+const SHOWN_LINE_CHARS: usize = 80;
+
+/// Line `line` (1-based) of `text`, trimmed and quoted, cut to
+/// [`SHOWN_LINE_CHARS`] characters.
+fn shown_line(text: &str, line: usize) -> String {
+    let content = text.lines().nth(line - 1).unwrap_or("").trim();
+    let mut shown: String = content.chars().take(SHOWN_LINE_CHARS).collect();
+    if content.chars().count() > SHOWN_LINE_CHARS {
+        shown.push_str("...");
+    }
+    format!("`{shown}`")
+}
+
+/// The key on line `line` of a text that does not parse, as a dotted path
+/// under the last `[table]` header above it (`motor.slider_mass`); the
+/// header itself for a header line. A plain scan: the parser gives no tree
+/// for broken text.
+fn key_on_line(text: &str, line: usize) -> Option<String> {
+    let lines: Vec<&str> = text.lines().collect();
+    let content = lines.get(line - 1)?.trim();
+    let header = |l: &str| {
+        l.strip_prefix('[')
+            .and_then(|h| h.split(']').next())
+            .map(|h| h.trim().to_owned())
+    };
+    if content.starts_with('[') {
+        return header(content).filter(|h| !h.is_empty());
+    }
+    let key = content.split(['=', ' ', '\t']).next()?.trim();
+    let bare = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.' | '"' | '\'');
+    if key.is_empty() || !key.chars().all(bare) {
+        return None;
+    }
+    let table = lines[..line - 1]
+        .iter()
+        .rev()
+        .map(|l| l.trim())
+        .find(|l| l.starts_with('['))
+        .and_then(header);
+    Some(match table {
+        Some(t) if !t.is_empty() => format!("{t}.{key}"),
+        _ => key.to_owned(),
+    })
 }
 
 /// The dotted path (`motor.slider_mass`, `signal.amplitudes[1]`) of the key

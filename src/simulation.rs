@@ -63,8 +63,11 @@ pub struct RunReport {
     pub work: WorkCounters,
     /// Wall time of the simulation (not of parsing or output).
     pub wall_time: Duration,
-    /// The event log of the transient, if asked.
+    /// The event log of the transient, if asked: its first
+    /// [`crate::observer::MAX_LOGGED_EVENTS`] events.
     pub event_log: Option<Vec<Event>>,
+    /// Events of the transient left out of the full event log.
+    pub event_log_omitted: u64,
     /// The steady-state period's segments, if asked.
     pub trajectory: Option<Vec<Segment>>,
 }
@@ -159,11 +162,12 @@ pub fn run(scene: &Scene) -> Result<RunReport, Error> {
 
 /// Runs the analysis a scene asks for with a prepared engine.
 pub fn run_with<E: PeriodEngine>(
-    mut engine: E,
+    engine: E,
     scene: &Scene,
     motor: &Motor,
 ) -> Result<RunReport, Error> {
     let clock = Instant::now();
+    let mut engine = crate::budget::TimeBudget::new(engine, scene.run.time_limit_s);
     let requested = scene.outputs.indicators.clone();
     let wants = |i: Indicator| requested.contains(&i);
     let signal = engine.signal().clone();
@@ -247,6 +251,7 @@ pub fn run_with<E: PeriodEngine>(
         error,
         work: engine.counters(),
         wall_time,
+        event_log_omitted: event_log.as_ref().map_or(0, |l| l.omitted),
         event_log: event_log.map(|l| l.events),
         trajectory: trajectory.map(|t| t.segments),
         transient: Some(transient),

@@ -718,6 +718,7 @@ proptest! {
                 steps_per_harmonic: steps,
                 max_periods: periods,
                 verify_steady_state: events,
+                ..RunSettings::default()
             },
         };
         // Friction accelerations mu F_c / m_s may overflow: then the scene is

@@ -2,7 +2,7 @@
 //! fixed-step reference at several resolutions.
 
 use super::run::load;
-use super::{Failure, Streams, write_out};
+use super::{Failure, SceneOptions, Streams, write_out};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -19,10 +19,16 @@ pub(crate) struct CheckArgs {
         default_values_t = crate::check::DEFAULT_STEPS
     )]
     steps: Vec<u32>,
+    #[command(flatten)]
+    options: SceneOptions,
 }
 
 pub(crate) fn check(args: CheckArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
-    let scene = load(args.scene.as_deref())?;
+    let mut scene = load(args.scene.as_deref())?;
+    for s in &args.steps {
+        crate::scene::check_fixed_steps(&scene.signal, *s, "--steps").map_err(|e| e.to_string())?;
+    }
+    args.options.apply(&mut scene, streams);
     let report = crate::check::check(&scene, &args.steps).map_err(|e| e.to_string())?;
     write_out(streams, &report.to_text())
 }

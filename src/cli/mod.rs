@@ -8,14 +8,28 @@
 //!   `stickslip: <reason>` on the error stream and exits 1; a usage error
 //!   (unknown flag, missing argument) exits 2 with clap's usage text, whose
 //!   first line says what was wrong;
-//! * output files are written atomically (all or nothing).
+//! * output files are written atomically (all or nothing), and an output
+//!   path that is one of the command's inputs is refused
+//!   (`refuse_output_over_input`);
+//! * results go to the output stream through one function that treats a
+//!   closed pipe (`stickslip run --json | head -c 10`) as the end of the
+//!   reader's interest: the command stops quietly with exit 0, as `cat` or
+//!   `seq` do when their reader has gone; any other write failure (a full
+//!   disk) is a one-line error with exit 1;
+//! * values that are valid but implausible ([`crate::Scene::warnings`]) print
+//!   one line each, `stickslip: warning: ...`, on the error stream before
+//!   the run, unless `--quiet`;
+//! * `--time-limit SECONDS` (or the scene's `[run] time_limit_s`) bounds the
+//!   wall-clock time of each simulation; a run that reaches it stops with a
+//!   one-line error naming how far it got.
 
 mod check;
 mod run;
 mod sweep;
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use std::io::Write;
+use std::path::Path;
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -65,7 +79,9 @@ where
     let cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => {
-            let text = e.render().ansi().to_string();
+            // Plain text: the error stream may be a file or a pipe, where colour
+            // codes would be noise.
+            let text = e.render().to_string();
             let exit = e.exit_code();
             let target: &mut dyn Write = if e.use_stderr() {
                 &mut *streams.err
@@ -96,13 +112,91 @@ where
     }
 }
 
-/// Writes a command's result to the output stream.
+/// Writes a command's result to the output stream. A reader that has gone
+/// (broken pipe) ends the command quietly and successfully; any other
+/// failure (`/dev/full`) is the command's error.
 fn write_out(streams: &mut Streams<'_>, text: &str) -> Result<(), Failure> {
-    streams
+    match streams
         .out
         .write_all(text.as_bytes())
         .and_then(|()| streams.out.flush())
-        .map_err(|e| format!("cannot write to standard output: {e}"))
+    {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(format!("cannot write to standard output: {e}"))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Options every command that simulates a scene takes (flatten into its
+/// arguments with `#[command(flatten)]`).
+#[derive(Args, Debug, Clone, Copy, Default)]
+pub(crate) struct SceneOptions {
+    /// No warnings about implausible values (and no progress bar).
+    #[arg(short, long)]
+    pub(crate) quiet: bool,
+    /// Wall-clock budget of each simulation, in seconds; overrides the
+    /// scene's [run] time_limit_s.
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        allow_negative_numbers = true,
+        value_parser = parse_time_limit
+    )]
+    pub(crate) time_limit: Option<f64>,
+}
+
+impl SceneOptions {
+    /// Applies the options to a loaded scene: `--time-limit` replaces its
+    /// `run.time_limit_s`; unless `--quiet`, its warnings
+    /// ([`crate::Scene::warnings`]) are printed on the error stream, one
+    /// line each.
+    pub(crate) fn apply(&self, scene: &mut crate::Scene, streams: &mut Streams<'_>) {
+        if let Some(limit) = self.time_limit {
+            scene.run.time_limit_s = Some(limit);
+        }
+        if !self.quiet {
+            print_warnings(scene, streams);
+        }
+    }
+}
+
+/// Prints a scene's warnings ([`crate::Scene::warnings`]) on the error
+/// stream, one line each: `stickslip: warning: <field> = <value> ...`.
+pub(crate) fn print_warnings(scene: &crate::Scene, streams: &mut Streams<'_>) {
+    for warning in scene.warnings() {
+        let _ = writeln!(streams.err, "stickslip: warning: {warning}");
+    }
+}
+
+/// `--time-limit`: a finite number of seconds above 0.
+fn parse_time_limit(text: &str) -> Result<f64, String> {
+    let value: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("\"{text}\" is not a number of seconds"))?;
+    crate::error::ParamError::positive("--time-limit", value).map_err(|e| e.to_string())
+}
+
+/// Refuses to write `output` when it is one of `inputs`: the same file by
+/// identity (device and inode, so that `./scene.toml`, an absolute path,
+/// a hard link or a symbolic link to it all count), or the same path once
+/// made absolute. An output that does not exist yet is no input. Call it
+/// before any work is done.
+pub(crate) fn refuse_output_over_input(output: &Path, inputs: &[&Path]) -> Result<(), Failure> {
+    let absolute = |p: &Path| std::path::absolute(p).ok();
+    for input in inputs {
+        let same_file = same_file::is_same_file(output, input).unwrap_or(false);
+        let same_path = absolute(output).is_some() && absolute(output) == absolute(input);
+        if same_file || same_path {
+            return Err(format!(
+                "output {} is the input {}: refusing to overwrite an input; name another output",
+                output.display(),
+                input.display()
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The binary's entry point: [`main_with`] on the process's arguments and

@@ -1,7 +1,7 @@
 //! `stickslip run [SCENE] [--json] [-o FILE]`: one run of a scene, printed
 //! as a summary or as one JSON object (keys in `docs/interface.md`).
 
-use super::{Failure, Streams, write_out};
+use super::{Failure, SceneOptions, Streams, refuse_output_over_input, write_out};
 use crate::{Scene, report, simulation};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -18,6 +18,8 @@ pub(crate) struct RunArgs {
     /// succeeded) instead of standard output.
     #[arg(long, short)]
     output: Option<PathBuf>,
+    #[command(flatten)]
+    options: SceneOptions,
 }
 
 /// A scene file, or the built-in default scene.
@@ -29,7 +31,11 @@ pub(crate) fn load(path: Option<&Path>) -> Result<Scene, Failure> {
 }
 
 pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
-    let scene = load(args.scene.as_deref())?;
+    if let (Some(output), Some(scene)) = (&args.output, &args.scene) {
+        refuse_output_over_input(output, &[scene])?;
+    }
+    let mut scene = load(args.scene.as_deref())?;
+    args.options.apply(&mut scene, streams);
     let result = simulation::run(&scene).map_err(|e| e.to_string())?;
     let text = if args.json {
         let mut text =

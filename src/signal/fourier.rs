@@ -20,7 +20,7 @@ use super::IdealShape;
 use super::RodState;
 use crate::engine::bracket;
 use crate::engine::trig_roots::TrigPoly;
-use crate::error::ParamError;
+use crate::error::{Num, ParamError};
 use crate::motor::Motor;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
@@ -427,7 +427,10 @@ impl FourierSignal {
         if actual.is_nan() || actual <= 0.0 {
             return Err(ParamError::Inconsistent {
                 field: "signal".to_owned(),
-                reason: format!("the signal has no stroke to scale (max - min = {actual} m)"),
+                reason: format!(
+                    "the signal has no stroke to scale (max - min = {} m)",
+                    Num(actual)
+                ),
             });
         }
         let f = stroke / actual;

@@ -22,7 +22,7 @@ pub mod fourier;
 pub mod harmonics;
 pub mod ideal;
 
-use crate::error::ParamError;
+use crate::error::{Num, ParamError};
 use crate::motor::Motor;
 use std::cmp::Ordering;
 
@@ -291,9 +291,11 @@ impl Signal {
                 return Err(ParamError::Inconsistent {
                     field: "signal.kappa".to_owned(),
                     reason: format!(
-                        "the rod acceleration a_R = kappa a_0 = {a_r} m/s^2 gives the period \
-                         T = {period} s; a kappa-based signal needs a_0 = mu_0 F_c / m_s > 0 \
-                         (for a motor without friction give the signal as kind = \"harmonics\")"
+                        "the rod acceleration a_R = kappa a_0 = {} m/s^2 gives the period \
+                         T = {} s; a kappa-based signal needs a_0 = mu_0 F_c / m_s > 0 \
+                         (for a motor without friction give the signal as kind = \"harmonics\")",
+                        Num(a_r),
+                        Num(period)
                     ),
                 });
             }
@@ -328,8 +330,9 @@ impl Signal {
             return Err(ParamError::Inconsistent {
                 field: "signal".to_owned(),
                 reason: format!(
-                    "the rod acceleration (up to {a_max:e} m/s^2) or velocity is not \
-                     representable in double precision; choose a lower frequency or amplitude"
+                    "the rod acceleration (up to {} m/s^2) or velocity is not \
+                     representable in double precision; choose a lower frequency or amplitude",
+                    Num(a_max)
                 ),
             });
         }

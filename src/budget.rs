@@ -1,0 +1,82 @@
+//! A wall-clock budget for a run (`[run] time_limit_s`, `--time-limit`).
+//!
+//! [`TimeBudget`] wraps any [`PeriodEngine`] and refuses to start another
+//! period once the budget has run out, with
+//! [`SimulationError::TimeLimit`] naming the budget and how many periods
+//! were simulated. Every analysis (start-up, fixed-point search, steady
+//! period) advances the motion only through `run_period`, so one check
+//! there bounds the whole run to the budget plus one period; the work of a
+//! single period is bounded separately (the event engine's events per
+//! period, [`crate::scene::MAX_FIXED_STEPS_PER_PERIOD`]).
+
+use crate::engine::{PeriodEngine, PeriodStart, WorkCounters};
+use crate::error::SimulationError;
+use crate::observer::{Observer, PeriodEnd};
+use crate::signal::Signal;
+use std::time::{Duration, Instant};
+
+/// An engine that stops with [`SimulationError::TimeLimit`] once the
+/// budget, counted from [`TimeBudget::new`], has run out. Without a budget
+/// it is the engine itself.
+pub struct TimeBudget<E> {
+    engine: E,
+    /// Start of the clock and the budget in seconds, when there is one.
+    limit: Option<(Instant, Duration, f64)>,
+}
+
+impl<E: PeriodEngine> TimeBudget<E> {
+    /// Wraps `engine` with a budget of `seconds` (none: no limit). The
+    /// clock starts now. A budget too large for a [`Duration`] is no limit.
+    pub fn new(engine: E, seconds: Option<f64>) -> Self {
+        let limit = seconds.and_then(|s| {
+            Duration::try_from_secs_f64(s)
+                .ok()
+                .map(|d| (Instant::now(), d, s))
+        });
+        Self { engine, limit }
+    }
+}
+
+impl<E: PeriodEngine> PeriodEngine for TimeBudget<E> {
+    fn signal(&self) -> &Signal {
+        self.engine.signal()
+    }
+
+    #[inline]
+    fn run_period<O: Observer>(
+        &mut self,
+        period: u64,
+        start: PeriodStart,
+        observer: &mut O,
+    ) -> Result<PeriodEnd, SimulationError> {
+        if let Some((clock, budget, seconds)) = self.limit
+            && clock.elapsed() > budget
+        {
+            return Err(SimulationError::TimeLimit {
+                seconds,
+                period: self.engine.counters().periods,
+            });
+        }
+        self.engine.run_period(period, start, observer)
+    }
+
+    fn counters(&self) -> WorkCounters {
+        self.engine.counters()
+    }
+
+    fn zero_velocity_tolerance(&self) -> f64 {
+        self.engine.zero_velocity_tolerance()
+    }
+
+    fn last_velocity_uncertainty(&self) -> Option<f64> {
+        self.engine.last_velocity_uncertainty()
+    }
+
+    fn event_time_uncertainty(&self) -> f64 {
+        self.engine.event_time_uncertainty()
+    }
+
+    fn steady_state_from_transient(&self) -> bool {
+        self.engine.steady_state_from_transient()
+    }
+}
