@@ -305,7 +305,10 @@ pub fn execute(sweep: &Sweep, options: &Options) -> Result<Summary, SweepError> 
                         .map(|c| c.cell(&case, &result))
                         .collect();
                     let line = layout.render(&cells);
-                    if sender.send((position, index, line, result.is_err())).is_err() {
+                    if sender
+                        .send((position, index, line, result.is_err()))
+                        .is_err()
+                    {
                         break;
                     }
                 }

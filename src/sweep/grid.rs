@@ -586,7 +586,9 @@ impl Sweep {
     /// Every case, in index order. This holds the whole grid: for large
     /// sweeps use [`Sweep::case`].
     pub fn cases(&self) -> Vec<Case> {
-        (0..self.len).map(|i| make_case(&self.base, &self.axes, i)).collect()
+        (0..self.len)
+            .map(|i| make_case(&self.base, &self.axes, i))
+            .collect()
     }
 
     /// Number of cases.
@@ -732,4 +734,3 @@ impl fmt::Display for Shard {
         write!(f, "{}/{}", self.index, self.count)
     }
 }
-

@@ -36,9 +36,7 @@ fn file_id(path: &Path) -> Option<String> {
     }
     #[cfg(not(unix))]
     {
-        path.canonicalize()
-            .ok()
-            .map(|p| p.display().to_string())
+        path.canonicalize().ok().map(|p| p.display().to_string())
     }
 }
 

@@ -185,4 +185,3 @@ pub use merge::{MISSING_LISTED, MergeSummary, merge};
 
 #[cfg(doc)]
 use crate::scene::Indicator;
-

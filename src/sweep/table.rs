@@ -286,9 +286,12 @@ impl Column {
     /// What a cell of this column may hold, for error messages.
     fn expects(self) -> String {
         match self {
-            Column::Case => return format!("a case index below {MAX_CASES} (the most cases a sweep has)"),
-            Column::PeriodsSimulated | Column::EventsTotal => "a whole number",
-            Column::StartupPeriods => "a whole number or nothing",
+            Column::Case => {
+                return format!("a case index below {MAX_CASES} (the most cases a sweep has)");
+            }
+            Column::StartupPeriods | Column::PeriodsSimulated | Column::EventsTotal => {
+                "a whole number or nothing"
+            }
             Column::SceneHash => "16 hexadecimal digits",
             Column::Failure => "text or nothing",
             Column::Axis(Axis::Harmonics) => "an integer",
@@ -304,8 +307,11 @@ impl Column {
     fn check(self, cell: Cell) -> Result<Cell, String> {
         let ok = match (self, &cell) {
             (Column::Case, Cell::Unsigned(case)) => *case < MAX_CASES as u64,
-            (Column::PeriodsSimulated | Column::EventsTotal, Cell::Unsigned(_)) => true,
-            (Column::StartupPeriods, Cell::Unsigned(_) | Cell::Empty) => true,
+            // Empty in the row of a case that failed.
+            (
+                Column::StartupPeriods | Column::PeriodsSimulated | Column::EventsTotal,
+                Cell::Unsigned(_) | Cell::Empty,
+            ) => true,
             (Column::SceneHash, Cell::Text(s)) => {
                 s.len() == 16 && s.bytes().all(|b| b.is_ascii_hexdigit())
             }
@@ -353,7 +359,9 @@ impl Column {
                 Column::Case
                 | Column::StartupPeriods
                 | Column::PeriodsSimulated
-                | Column::EventsTotal => text.parse().map_or(Cell::Text(text.into()), Cell::Unsigned),
+                | Column::EventsTotal => {
+                    text.parse().map_or(Cell::Text(text.into()), Cell::Unsigned)
+                }
                 Column::Axis(Axis::Harmonics) => {
                     text.parse().map_or(Cell::Text(text.into()), Cell::Integer)
                 }
@@ -507,9 +515,12 @@ pub(super) fn parse(path: &Path, text: &str) -> Result<Parsed, SweepError> {
         reason: format!("line {line}: {reason}"),
     };
     let complete = &text[..text.rfind('\n').map_or(0, |i| i + 1)];
-    let truncated =
-        (complete.len() < text.len()).then(|| complete.lines().count() + 1);
-    let mut lines = complete.lines().enumerate().map(|(i, l)| (i + 1, l)).peekable();
+    let truncated = (complete.len() < text.len()).then(|| complete.lines().count() + 1);
+    let mut lines = complete
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l))
+        .peekable();
     let mut parsed = Parsed {
         format: None,
         meta: None,
@@ -523,8 +534,8 @@ pub(super) fn parse(path: &Path, text: &str) -> Result<Parsed, SweepError> {
     if first.starts_with('{') {
         parsed.format = Some(Format::Jsonl);
         for (number, line) in lines {
-            let value: serde_json::Value = serde_json::from_str(line)
-                .map_err(|e| bad(number, format!("not JSON: {e}")))?;
+            let value: serde_json::Value =
+                serde_json::from_str(line).map_err(|e| bad(number, format!("not JSON: {e}")))?;
             let serde_json::Value::Object(map) = value else {
                 return Err(bad(number, "not a JSON object".into()));
             };
