@@ -184,4 +184,4 @@ pub use grid::{
 pub use merge::{MISSING_LISTED, MergeSummary, merge};
 
 #[cfg(doc)]
-use crate::scene::Indicator;
+use crate::{Scene, scene::Indicator};
