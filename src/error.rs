@@ -257,10 +257,12 @@ pub enum SweepError {
         source: Box<ParamError>,
     },
     /// More cases than a sweep may have.
-    #[error("invalid sweep {path}: more than {max} cases")]
+    #[error("invalid sweep {path}: {cases} cases, more than the {max} a sweep may have")]
     TooLarge {
         /// The sweep file.
         path: String,
+        /// The number of cases (saturated at `u128::MAX`).
+        cases: u128,
         /// The limit.
         max: usize,
     },

@@ -24,6 +24,7 @@ pub mod cli;
 pub mod engine;
 pub mod error;
 pub mod indicators;
+pub mod interrupt;
 pub mod motor;
 pub mod observer;
 pub mod output;

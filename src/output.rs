@@ -1,8 +1,10 @@
 //! Writing output files so that a reader never sees half of one: the text
 //! goes to a temporary file beside the target, which is then renamed over
 //! it (atomic on one file system). On failure the temporary file is removed
-//! and the target is left as it was.
+//! and the target is left as it was. The temporary file is registered with
+//! [`crate::interrupt`], so a SIGINT or SIGTERM while it exists deletes it.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// The temporary path used while writing `path`.
@@ -16,10 +18,13 @@ fn temporary(path: &Path) -> PathBuf {
 /// Writes `bytes` to `path` atomically.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let temp = temporary(path);
-    let result = std::fs::write(&temp, bytes).and_then(|()| std::fs::rename(&temp, path));
+    let result = crate::interrupt::create_registered(&temp)
+        .and_then(|mut file| file.write_all(bytes))
+        .and_then(|()| std::fs::rename(&temp, path));
     if result.is_err() {
         let _ = std::fs::remove_file(&temp);
     }
+    crate::interrupt::unregister(&temp);
     result
 }
 

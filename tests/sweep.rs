@@ -54,9 +54,19 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
+/// A CSV row of [`SMALL`] (v_inf is the sixth column) with another v_inf.
+fn with_v_inf(line: &str, v_inf: &str) -> String {
+    let mut fields: Vec<&str> = line.split(',').collect();
+    fields[5] = v_inf;
+    fields.join(",")
+}
+
 /// CSV rows as header-keyed maps, without `wall_time_s`.
 fn rows_without_timing(path: &Path) -> Vec<Vec<(String, String)>> {
-    let mut reader = csv::Reader::from_path(path).unwrap();
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .from_path(path)
+        .unwrap();
     let header = reader.headers().unwrap().clone();
     reader
         .records()
@@ -95,9 +105,15 @@ fn three_shards_merged_equal_the_unsharded_sweep() {
             shards.push(out);
         }
         let merged = d.join(format!("merged-{timing}.{ext}"));
-        // Inputs in any order, one of them twice: identical rows are fine.
-        let mut args = vec!["merge", s(&merged), s(&shards[2]), s(&shards[0])];
-        args.extend([s(&shards[1]), s(&shards[0])]);
+        // Inputs in any order.
+        let args = vec![
+            "merge",
+            "-o",
+            s(&merged),
+            s(&shards[2]),
+            s(&shards[0]),
+            s(&shards[1]),
+        ];
         ok(stickslip(&args));
         let (a, b) = (
             fs::read_to_string(&whole).unwrap(),
@@ -108,15 +124,16 @@ fn three_shards_merged_equal_the_unsharded_sweep() {
             assert_eq!(rows_without_timing(&whole).len(), 12);
         } else {
             assert_eq!(a, b, "{ext}");
+            // A header line, the column names (CSV), then the rows.
             let rows = if ext == "csv" {
-                a.lines().count() - 1
+                a.lines().count() - 2
             } else {
-                a.lines().count()
+                a.lines().count() - 1
             };
             assert_eq!(rows, 12);
         }
         if ext == "jsonl" {
-            for (i, line) in a.lines().enumerate() {
+            for (i, line) in a.lines().skip(1).enumerate() {
                 let v: serde_json::Value = serde_json::from_str(line).unwrap();
                 assert_eq!(v["case"], i);
                 assert!(v["v_inf"].as_f64().unwrap() > 0.0);
@@ -165,13 +182,13 @@ fn a_rerun_runs_only_the_missing_cases() {
     ok(stickslip(&args));
     let full = fs::read_to_string(&out).unwrap();
     let lines: Vec<&str> = full.lines().collect();
-    assert_eq!(lines.len(), 13);
+    assert_eq!(lines.len(), 14);
 
     // Drop cases 2, 5 and 6; cut the last row (case 11) in the middle.
     let mut damaged: Vec<&str> = lines
         .iter()
         .enumerate()
-        .filter(|(i, _)| ![3, 6, 7].contains(i))
+        .filter(|(i, _)| ![4, 7, 8].contains(i))
         .map(|(_, l)| *l)
         .collect();
     let last = damaged.pop().unwrap();
@@ -181,12 +198,12 @@ fn a_rerun_runs_only_the_missing_cases() {
     assert!(err.contains("8 already written, 4 run"), "{err}");
     assert_eq!(fs::read_to_string(&out).unwrap(), full);
 
-    // The library with a checkpoint after every case writes the same.
+    // The library on one thread, from an empty file, writes the same.
     fs::write(&out, "").unwrap();
     let options = sweep::Options {
         timing: false,
         progress: false,
-        checkpoint: std::time::Duration::ZERO,
+        jobs: Some(1),
         ..sweep::Options::new(&out)
     };
     let summary = sweep::execute(&sweep::load(&file).unwrap(), &options).unwrap();
@@ -194,7 +211,7 @@ fn a_rerun_runs_only_the_missing_cases() {
     assert_eq!(fs::read_to_string(&out).unwrap(), full);
 
     // Nothing missing: nothing runs, and a kept row is kept as it is.
-    let edited = full.replacen(lines[1], &lines[1].replacen(",0.0", ",9.0", 1), 1);
+    let edited = full.replacen(lines[2], &with_v_inf(lines[2], "9.5"), 1);
     assert_ne!(edited, full);
     fs::write(&out, &edited).unwrap();
     let err = ok(stickslip(&args));
@@ -209,9 +226,10 @@ fn a_rerun_runs_only_the_missing_cases() {
     );
     assert_eq!(fs::read_to_string(&out).unwrap(), edited);
 
-    // Rows of another sweep (other axis values) are refused, untouched.
+    // Another axis value (level 6 -> 7): the six rows of level 6 are
+    // dropped and rerun, the six of level 3 kept (the edited one too).
     let other = write(&d, "other.toml", &SMALL.replace("[3, 6]", "[3, 7]"));
-    let err = failure(stickslip(&[
+    let err = ok(stickslip(&[
         "sweep",
         s(&other),
         "-q",
@@ -219,8 +237,13 @@ fn a_rerun_runs_only_the_missing_cases() {
         "-o",
         s(&out),
     ]));
-    assert!(err.contains("different sweep"), "{err}");
-    assert_eq!(fs::read_to_string(&out).unwrap(), edited);
+    assert!(
+        err.contains("6 rows of") && err.contains("6 already written, 6 run"),
+        "{err}"
+    );
+    let now = fs::read_to_string(&out).unwrap();
+    assert_eq!(now.lines().nth(2), edited.lines().nth(2));
+    assert!(now.lines().nth(8).unwrap().starts_with("6,7,2,false,"));
 }
 
 /// The `level` axis sets `sqrt(kappa) = level / n` (37): each case is the
@@ -434,31 +457,38 @@ fn merge_refuses_mismatched_inputs() {
         s(&c),
     ]));
     let out = d.join("out.csv");
-    let err = failure(stickslip(&["merge", s(&out), s(&a), s(&b)]));
+    let err = failure(stickslip(&["merge", "-o", s(&out), s(&a), s(&b)]));
     assert!(
         err.contains("b.csv: has the extra columns wall_time_s compared with"),
         "{err}"
     );
-    let err = failure(stickslip(&["merge", s(&out), s(&a), s(&c)]));
+    let err = failure(stickslip(&["merge", "-o", s(&out), s(&a), s(&c)]));
     assert!(err.contains("c.jsonl") && err.contains("jsonl"), "{err}");
     // The same case with different content.
     let text = fs::read_to_string(&a).unwrap();
-    let line = text.lines().nth(1).unwrap();
+    let line = text.lines().nth(2).unwrap();
     let changed = write(
         &d,
         "changed.csv",
-        &text.replacen(line, &line.replacen(",0.0", ",9.0", 1), 1),
+        &text.replacen(line, &with_v_inf(line, "9.5"), 1),
     );
-    let err = failure(stickslip(&["merge", s(&out), s(&a), s(&changed)]));
+    let err = failure(stickslip(&["merge", "-o", s(&out), s(&a), s(&changed)]));
     assert!(
-        err.contains("changed.csv") && err.contains("case 0"),
+        err.contains("changed.csv: line 3: case 0 is also in") && err.contains("a.csv line 3"),
         "{err}"
     );
+    // The same input twice.
+    let err = failure(stickslip(&["merge", "-o", s(&out), s(&a), s(&a)]));
+    assert!(err.contains("a.csv: is given twice"), "{err}");
+    assert!(!out.exists());
+    // The old syntax (output first, no -o) is a usage error.
+    let o = stickslip(&["merge", s(&out), s(&a)]);
+    assert_eq!(o.status.code(), Some(2));
     assert!(!out.exists());
     // A gap is reported, not refused.
-    let err = ok(stickslip(&["merge", s(&out), s(&a)]));
+    let err = ok(stickslip(&["merge", "-o", s(&out), s(&a)]));
     assert!(
-        err.contains("missing") && err.contains("[1, 3, 5, 7, 9]"),
+        err.contains("5 cases missing") && err.contains("[1, 3, 5, 7, 9]"),
         "{err}"
     );
 }

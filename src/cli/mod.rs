@@ -22,6 +22,9 @@
 //! * `--time-limit SECONDS` (or the scene's `[run] time_limit_s`) bounds the
 //!   wall-clock time of each simulation; a run that reaches it stops with a
 //!   one-line error naming how far it got.
+//! * a command stopped by SIGINT or SIGTERM exits 130 or 143 (see
+//!   [`crate::interrupt`], installed by [`main`]), leaving no partial or
+//!   temporary file.
 
 mod check;
 mod run;
@@ -92,19 +95,20 @@ where
             return u8::try_from(exit).unwrap_or(2);
         }
     };
-    let outcome = match cli.command {
-        None => run::run(run::RunArgs::default(), streams),
-        Some(Command::Run(args)) => run::run(args, streams),
+    // Ok: the exit status (0, or 130/143 for a sweep stopped by a signal).
+    let outcome: Result<u8, Failure> = match cli.command {
+        None => run::run(run::RunArgs::default(), streams).map(|()| 0),
+        Some(Command::Run(args)) => run::run(args, streams).map(|()| 0),
         Some(Command::DefaultScene) => {
             let text = crate::Scene::default().to_toml();
-            write_out(streams, &text)
+            write_out(streams, &text).map(|()| 0)
         }
-        Some(Command::Check(args)) => check::check(args, streams),
+        Some(Command::Check(args)) => check::check(args, streams).map(|()| 0),
         Some(Command::Sweep(args)) => sweep::sweep(args, streams),
-        Some(Command::Merge(args)) => sweep::merge(args, streams),
+        Some(Command::Merge(args)) => sweep::merge(args, streams).map(|()| 0),
     };
     match outcome {
-        Ok(()) => 0,
+        Ok(code) => code,
         Err(message) => {
             let _ = writeln!(streams.err, "stickslip: {}", message.replace('\n', " "));
             1
@@ -202,6 +206,10 @@ pub(crate) fn refuse_output_over_input(output: &Path, inputs: &[&Path]) -> Resul
 /// The binary's entry point: [`main_with`] on the process's arguments and
 /// standard streams.
 pub fn main() -> ExitCode {
+    // Without the handlers the signals keep their default action: the
+    // commands still work, only an interrupted one may leave a temporary
+    // file, so a failure here is not worth refusing to run.
+    let _ = crate::interrupt::install();
     let stdout = std::io::stdout();
     let stderr = std::io::stderr();
     let mut out = stdout.lock();

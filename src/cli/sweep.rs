@@ -2,6 +2,7 @@
 //! parallel into one CSV or JSON-lines file, and the joining of shards.
 
 use super::{Failure, Streams};
+use crate::interrupt;
 use crate::sweep::{self, Shard};
 use clap::Args;
 use std::path::PathBuf;
@@ -24,39 +25,63 @@ pub(crate) struct SweepArgs {
     /// No progress bar.
     #[arg(short, long)]
     quiet: bool,
-    /// Worker threads (default: every available CPU).
-    #[arg(short, long)]
-    jobs: Option<usize>,
+    /// Worker threads (default and maximum: the available CPUs; never more
+    /// than the cases to run).
+    #[arg(short, long, value_parser = clap::value_parser!(u32).range(1..))]
+    jobs: Option<u32>,
 }
 
 /// Arguments of `merge`.
 #[derive(Args)]
 pub(crate) struct MergeArgs {
-    /// The merged file (written atomically).
+    /// The merged file (written atomically; it may not be one of the inputs).
+    #[arg(short, long, required = true)]
     output: PathBuf,
-    /// Sweep outputs with the same columns.
+    /// Sweep outputs with the same header line and columns.
     #[arg(required = true)]
     inputs: Vec<PathBuf>,
 }
 
-pub(crate) fn sweep(args: SweepArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
-    if let Some(jobs) = args.jobs {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(jobs)
-            .build_global()
-            .map_err(|e| e.to_string())?;
-    }
+/// Runs the sweep; `Ok` holds the exit status: 0, or 130/143 when a
+/// signal stopped it (the rows finished so far are in the output).
+pub(crate) fn sweep(args: SweepArgs, streams: &mut Streams<'_>) -> Result<u8, Failure> {
     let sweep = sweep::load(&args.file).map_err(|e| e.to_string())?;
     let output = args
         .output
         .unwrap_or_else(|| sweep.default_output(args.shard));
+    super::refuse_output_over_input(&output, &[args.file.as_path()])?;
+    if !args.quiet {
+        super::print_warnings(sweep.base(), streams);
+    }
     let options = sweep::Options {
         shard: args.shard,
         timing: !args.no_timing,
         progress: !args.quiet,
+        jobs: args.jobs.map(|j| j as usize),
         ..sweep::Options::new(&output)
     };
-    let s = sweep::execute(&sweep, &options).map_err(|e| e.to_string())?;
+    let s = {
+        // The first signal stops the sweep between cases, not the process.
+        let _deferral = interrupt::defer();
+        sweep::execute(&sweep, &options).map_err(|e| e.to_string())?
+    };
+    for note in &s.notes {
+        let _ = writeln!(streams.err, "stickslip: {note}");
+    }
+    if let Some(signal) = s.interrupted {
+        let name = if signal == 15 { "SIGTERM" } else { "SIGINT" };
+        let _ = writeln!(
+            streams.err,
+            "stickslip: stopped by {name}: {} rows are in {} ({} written now, {} cases of {} not run); \
+             rerun the same command to complete it",
+            s.rows,
+            output.display(),
+            s.ran,
+            s.cases - s.skipped - s.ran,
+            s.cases
+        );
+        return Ok(interrupt::exit_status(signal));
+    }
     let _ = writeln!(
         streams.err,
         "stickslip: {} cases{}: {} already written, {} run, {} failed; {} rows in {}",
@@ -77,7 +102,7 @@ pub(crate) fn sweep(args: SweepArgs, streams: &mut Streams<'_>) -> Result<(), Fa
             "stickslip: warning: see the failure column for why cases failed"
         );
     }
-    Ok(())
+    Ok(0)
 }
 
 pub(crate) fn merge(args: MergeArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
@@ -88,12 +113,18 @@ pub(crate) fn merge(args: MergeArgs, streams: &mut Streams<'_>) -> Result<(), Fa
         s.rows,
         args.output.display()
     );
-    if !s.missing.is_empty() {
+    if s.missing > 0 {
+        let more = if s.missing > s.first_missing.len() as u64 {
+            ", ..."
+        } else {
+            ""
+        };
+        let listed: Vec<String> = s.first_missing.iter().map(u64::to_string).collect();
         let _ = writeln!(
             streams.err,
-            "stickslip: warning: {} cases missing below the last one: {:?}",
-            s.missing.len(),
-            s.missing
+            "stickslip: warning: {} cases missing below the last one: [{}{more}]",
+            s.missing,
+            listed.join(", ")
         );
     }
     Ok(())

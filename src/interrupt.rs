@@ -1,0 +1,137 @@
+//! SIGINT and SIGTERM: no partial output file, no temporary file left
+//! behind, and the conventional exit status `128 + signal` (130 for SIGINT,
+//! 143 for SIGTERM).
+//!
+//! Contract:
+//! * [`install`] (called once by the binary; later calls do nothing) starts
+//!   a thread that receives the signals. Without it the signals keep their
+//!   default action and [`requested`] is always `None`.
+//! * Files named with [`register`] (temporary files of
+//!   [`crate::output::write_atomically`], the lock of a running sweep) are
+//!   deleted when a signal ends the process, then the process exits with
+//!   `128 + signal`.
+//! * While a [`Deferral`] from [`defer`] lives (a sweep), the first signal
+//!   only sets the flag read by [`requested`]: the sweep stops taking new
+//!   cases, writes the ones in flight and returns; a second signal ends the
+//!   process at once as above.
+//!
+//! The registry's lock is held while a registered file is created (see
+//! [`create_registered`]) and while the signal thread deletes the files and
+//! exits, so a file is either created before the clean-up (and deleted by
+//! it) or never.
+
+use std::collections::BTreeSet;
+use std::fs::File;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicI32, AtomicUsize, Ordering};
+use std::sync::{Mutex, MutexGuard, OnceLock};
+
+/// The first signal received, 0 for none.
+static SIGNAL: AtomicI32 = AtomicI32::new(0);
+/// Live [`Deferral`]s.
+static DEFERRALS: AtomicUsize = AtomicUsize::new(0);
+/// Files to delete when a signal ends the process.
+static FILES: Mutex<BTreeSet<PathBuf>> = Mutex::new(BTreeSet::new());
+/// Set once the signal thread runs.
+static INSTALLED: OnceLock<()> = OnceLock::new();
+
+fn files() -> MutexGuard<'static, BTreeSet<PathBuf>> {
+    // A panic while the set was held leaves it consistent (inserts and
+    // removes are single operations), so a poisoned lock is still usable.
+    FILES.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Starts handling SIGINT and SIGTERM (see the module docs). Idempotent.
+pub fn install() -> std::io::Result<()> {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    if INSTALLED.get().is_some() {
+        return Ok(());
+    }
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM])?;
+    INSTALLED.get_or_init(|| ());
+    std::thread::spawn(move || {
+        for signal in signals.forever() {
+            let first = SIGNAL
+                .compare_exchange(0, signal, Ordering::SeqCst, Ordering::SeqCst)
+                .is_ok();
+            if first && DEFERRALS.load(Ordering::SeqCst) > 0 {
+                continue;
+            }
+            let registered = files();
+            for path in registered.iter() {
+                let _ = std::fs::remove_file(path);
+            }
+            // Exits with the lock held: no registered file appears after
+            // the clean-up.
+            std::process::exit(128 + SIGNAL.load(Ordering::SeqCst));
+        }
+    });
+    Ok(())
+}
+
+/// The signal that asked the program to stop (`SIGINT` = 2, `SIGTERM` =
+/// 15), if any.
+pub fn requested() -> Option<i32> {
+    match SIGNAL.load(Ordering::SeqCst) {
+        0 => None,
+        signal => Some(signal),
+    }
+}
+
+/// The exit status after `signal`: `128 + signal`.
+pub fn exit_status(signal: i32) -> u8 {
+    u8::try_from(128 + signal).unwrap_or(u8::MAX)
+}
+
+/// Postpones the exit on the first signal while it lives (see the module
+/// docs).
+#[must_use = "the deferral ends when it is dropped"]
+pub struct Deferral(());
+
+/// Starts a [`Deferral`].
+pub fn defer() -> Deferral {
+    DEFERRALS.fetch_add(1, Ordering::SeqCst);
+    Deferral(())
+}
+
+impl Drop for Deferral {
+    fn drop(&mut self) {
+        DEFERRALS.fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
+/// Marks `path` for deletion if a signal ends the process.
+pub fn register(path: &Path) {
+    files().insert(path.to_owned());
+}
+
+/// Creates (truncating) `path` and marks it for deletion if a signal ends
+/// the process, as one step with respect to the clean-up.
+pub fn create_registered(path: &Path) -> std::io::Result<File> {
+    let mut registered = files();
+    let file = File::create(path)?;
+    registered.insert(path.to_owned());
+    Ok(file)
+}
+
+/// Forgets `path` (it was renamed, deleted, or is complete).
+pub fn unregister(path: &Path) {
+    files().remove(path);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn registered_files_are_listed_until_forgotten() {
+        let path = std::env::temp_dir().join(format!("stickslip-interrupt-{}", std::process::id()));
+        drop(create_registered(&path).unwrap());
+        assert!(files().contains(&path));
+        unregister(&path);
+        assert!(!files().contains(&path));
+        std::fs::remove_file(&path).unwrap();
+        assert_eq!(exit_status(2), 130);
+        assert_eq!(exit_status(15), 143);
+    }
+}

@@ -1,0 +1,736 @@
+//! The grid of a sweep: the sweep file, its axes and values, and the cases,
+//! each made from its index on demand ([`Sweep::case`]), so that a sweep
+//! holds only its axes whatever the number of cases.
+
+use crate::Scene;
+use crate::error::{ParamError, SweepError};
+use crate::scene::Indicator;
+use crate::signal::{MAX_HARMONICS, SignalSpec};
+use ordered_float::OrderedFloat;
+use rayon::prelude::*;
+use serde::Deserialize;
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+
+/// The largest number of cases a sweep may have. The grid is not stored
+/// (cases are made from their index), but every case is validated when the
+/// sweep is loaded, which takes about a second per million cases.
+pub const MAX_CASES: usize = 10_000_000;
+
+/// A sweep axis: a scene parameter that takes a list of values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Axis {
+    /// `f_max` level `L = n sqrt(kappa)` (37), so `sqrt(kappa) = L / n`.
+    Level,
+    /// `sqrt(kappa)`.
+    SqrtKappa,
+    /// `kappa = a_R / a_0`.
+    Kappa,
+    /// Number of harmonics `n`.
+    Harmonics,
+    /// Lanczos sigma factors (15) on or off.
+    Sigma,
+    /// `x_Rmax` (m).
+    Stroke,
+    /// `t_1 / T` of the ideal signal.
+    Duty,
+    /// `mu_0`.
+    MuStatic,
+    /// `mu_d`.
+    MuDynamic,
+    /// `F_c` (N).
+    ContactForce,
+    /// `m_s` (kg).
+    SliderMass,
+    /// `g_t` (m/s^2).
+    ExtraAcceleration,
+}
+
+impl Axis {
+    /// Every axis, in case order (the first varies slowest).
+    pub const ALL: [Axis; 12] = [
+        Axis::Level,
+        Axis::SqrtKappa,
+        Axis::Kappa,
+        Axis::Harmonics,
+        Axis::Sigma,
+        Axis::Stroke,
+        Axis::Duty,
+        Axis::MuStatic,
+        Axis::MuDynamic,
+        Axis::ContactForce,
+        Axis::SliderMass,
+        Axis::ExtraAcceleration,
+    ];
+
+    /// The name in sweep files and output columns.
+    pub fn name(self) -> &'static str {
+        match self {
+            Axis::Level => "level",
+            Axis::SqrtKappa => "sqrt_kappa",
+            Axis::Kappa => "kappa",
+            Axis::Harmonics => "harmonics",
+            Axis::Sigma => "sigma",
+            Axis::Stroke => "stroke",
+            Axis::Duty => "duty",
+            Axis::MuStatic => "mu_static",
+            Axis::MuDynamic => "mu_dynamic",
+            Axis::ContactForce => "contact_force",
+            Axis::SliderMass => "slider_mass",
+            Axis::ExtraAcceleration => "extra_acceleration",
+        }
+    }
+
+    /// Checks one value on its own (`field` is `axes.<name>[i]`).
+    fn check(self, field: &str, value: AxisValue) -> Result<(), ParamError> {
+        match (self, value) {
+            (Axis::Harmonics, AxisValue::Integer(n)) => {
+                if usize::try_from(n).is_ok_and(|n| (1..=MAX_HARMONICS).contains(&n)) {
+                    Ok(())
+                } else {
+                    Err(ParamError::out_of_range(
+                        field,
+                        n as f64,
+                        format!("must be an integer from 1 to {MAX_HARMONICS}"),
+                    ))
+                }
+            }
+            (Axis::Sigma, AxisValue::Bool(_)) => Ok(()),
+            (Axis::MuStatic | Axis::MuDynamic, AxisValue::Number(x)) => {
+                ParamError::non_negative(field, x).map(drop)
+            }
+            (Axis::ExtraAcceleration, AxisValue::Number(x)) => {
+                ParamError::finite(field, x).map(drop)
+            }
+            (Axis::Duty, AxisValue::Number(x)) => {
+                ParamError::positive(field, x)?;
+                if x > 1.0 {
+                    Err(ParamError::out_of_range(
+                        field,
+                        x,
+                        "must lie in (0, 1] (t_1 / T)",
+                    ))
+                } else {
+                    Ok(())
+                }
+            }
+            (Axis::SqrtKappa, AxisValue::Number(x)) => {
+                ParamError::positive(field, x)?;
+                if (x * x).is_finite() && x * x > 0.0 {
+                    Ok(())
+                } else {
+                    Err(ParamError::out_of_range(
+                        field,
+                        x,
+                        "its square kappa must be positive and finite",
+                    ))
+                }
+            }
+            (_, AxisValue::Number(x)) => ParamError::positive(field, x).map(drop),
+            (_, other) => Err(ParamError::Inconsistent {
+                field: field.to_owned(),
+                reason: format!("{other} has the wrong type"),
+            }),
+        }
+    }
+
+    /// True if a sweep file may give `value` for this axis.
+    pub(super) fn accepts(self, value: AxisValue) -> bool {
+        self.check(self.name(), value).is_ok()
+    }
+
+    /// Why this axis cannot vary the base signal, or `None` if it can.
+    fn unfit_for(self, signal: &SignalSpec) -> Option<String> {
+        let kind = match signal {
+            SignalSpec::Fourier { .. } => return None,
+            SignalSpec::Ideal(_) => "ideal",
+            SignalSpec::Harmonics {
+                scale_to_stroke, ..
+            } => {
+                if self == Axis::Stroke && scale_to_stroke.is_none() {
+                    return Some(
+                        "the base signal (kind = \"harmonics\") has scale_to_stroke = false"
+                            .to_owned(),
+                    );
+                }
+                "harmonics"
+            }
+        };
+        let needs_fourier = matches!(self, Axis::Level | Axis::Harmonics | Axis::Sigma);
+        let needs_shape = matches!(self, Axis::SqrtKappa | Axis::Kappa | Axis::Duty);
+        (needs_fourier || (needs_shape && kind == "harmonics")).then(|| {
+            format!(
+                "needs a base signal with kind = \"{}\", the base has kind = \"{kind}\"",
+                if needs_fourier {
+                    "fourier"
+                } else {
+                    "fourier\" or \"ideal"
+                }
+            )
+        })
+    }
+
+    /// Sets this axis's parameter; `level` is applied by [`set_level`].
+    fn apply(self, scene: &mut Scene, value: AxisValue) {
+        let motor = &mut scene.motor;
+        let number = value.as_f64().unwrap_or(f64::NAN);
+        match (self, &mut scene.signal) {
+            (Axis::MuStatic, _) => motor.mu_static = number,
+            (Axis::MuDynamic, _) => motor.mu_dynamic = number,
+            (Axis::ContactForce, _) => motor.contact_force = number,
+            (Axis::SliderMass, _) => motor.slider_mass = number,
+            (Axis::ExtraAcceleration, _) => motor.extra_acceleration = number,
+            (
+                Axis::Stroke,
+                SignalSpec::Harmonics {
+                    scale_to_stroke, ..
+                },
+            ) => *scale_to_stroke = Some(number),
+            (Axis::Harmonics, SignalSpec::Fourier { harmonics, .. }) => {
+                if let AxisValue::Integer(n) = value {
+                    *harmonics = usize::try_from(n).unwrap_or(0);
+                }
+            }
+            (Axis::Sigma, SignalSpec::Fourier { sigma, .. }) => {
+                if let AxisValue::Bool(b) = value {
+                    *sigma = b;
+                }
+            }
+            (axis, SignalSpec::Fourier { shape, .. } | SignalSpec::Ideal(shape)) => match axis {
+                Axis::SqrtKappa => shape.kappa = number * number,
+                Axis::Kappa => shape.kappa = number,
+                Axis::Stroke => shape.stroke = number,
+                Axis::Duty => shape.duty = number,
+                _ => {}
+            },
+            _ => {}
+        }
+    }
+}
+
+/// `sqrt(kappa) = level / n` (37).
+fn set_level(scene: &mut Scene, level: f64) {
+    if let SignalSpec::Fourier {
+        shape, harmonics, ..
+    } = &mut scene.signal
+    {
+        let sqrt_kappa = level / *harmonics as f64;
+        shape.kappa = sqrt_kappa * sqrt_kappa;
+    }
+}
+
+impl fmt::Display for Axis {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Axis {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|a| a.name() == s)
+            .ok_or_else(|| format!("unknown sweep axis \"{s}\""))
+    }
+}
+
+/// One value of an axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AxisValue {
+    /// A real number (SI units).
+    Number(f64),
+    /// An integer (`harmonics`).
+    Integer(i64),
+    /// A switch (`sigma`).
+    Bool(bool),
+}
+
+impl AxisValue {
+    /// The value as a number (`Integer` converted), `None` for a switch.
+    pub fn as_f64(self) -> Option<f64> {
+        match self {
+            AxisValue::Number(x) => Some(x),
+            AxisValue::Integer(n) => Some(n as f64),
+            AxisValue::Bool(_) => None,
+        }
+    }
+
+    /// The value as a switch, `None` for numbers.
+    pub fn as_bool(self) -> Option<bool> {
+        match self {
+            AxisValue::Bool(b) => Some(b),
+            _ => None,
+        }
+    }
+
+    /// The value as an exact key: numbers compare, order and hash by their
+    /// value with [`OrderedFloat`] (no rounding, no tolerance).
+    pub fn key(self) -> AxisKey {
+        match self {
+            AxisValue::Number(x) => AxisKey::Number(OrderedFloat(x)),
+            AxisValue::Integer(n) => AxisKey::Integer(n),
+            AxisValue::Bool(b) => AxisKey::Bool(b),
+        }
+    }
+}
+
+/// An [`AxisValue`] as an exact, hashable key (see [`AxisValue::key`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum AxisKey {
+    /// A real number.
+    Number(OrderedFloat<f64>),
+    /// An integer.
+    Integer(i64),
+    /// A switch.
+    Bool(bool),
+}
+
+impl fmt::Display for AxisValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            AxisValue::Number(x) => write!(f, "{x}"),
+            AxisValue::Integer(n) => write!(f, "{n}"),
+            AxisValue::Bool(b) => write!(f, "{b}"),
+        }
+    }
+}
+
+/// Output format of a sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Format {
+    /// Comma-separated values with a header line.
+    #[default]
+    Csv,
+    /// One JSON object per line, keys in column order.
+    Jsonl,
+}
+
+impl Format {
+    /// The format a file name asks for: `.csv` or `.jsonl`, else `None`.
+    pub fn from_path(path: &Path) -> Option<Format> {
+        match path.extension()?.to_str()? {
+            "csv" => Some(Format::Csv),
+            "jsonl" => Some(Format::Jsonl),
+            _ => None,
+        }
+    }
+
+    /// The usual file extension.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Format::Csv => "csv",
+            Format::Jsonl => "jsonl",
+        }
+    }
+}
+
+/// The sweep file as written.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepFile {
+    /// Base scene, relative to the sweep file; `None`: [`Scene::default`].
+    #[serde(default)]
+    pub base: Option<PathBuf>,
+    /// `[axes]`.
+    #[serde(default)]
+    pub axes: AxesTable,
+    /// `[outputs]`.
+    #[serde(default)]
+    pub outputs: Option<SweepOutputsTable>,
+}
+
+/// The `[axes]` table: each field a list of values (see the module docs).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct AxesTable {
+    pub level: Option<Vec<f64>>,
+    pub sqrt_kappa: Option<Vec<f64>>,
+    pub kappa: Option<Vec<f64>>,
+    pub harmonics: Option<Vec<i64>>,
+    pub sigma: Option<Vec<bool>>,
+    pub stroke: Option<Vec<f64>>,
+    pub duty: Option<Vec<f64>>,
+    pub mu_static: Option<Vec<f64>>,
+    pub mu_dynamic: Option<Vec<f64>>,
+    pub contact_force: Option<Vec<f64>>,
+    pub slider_mass: Option<Vec<f64>>,
+    pub extra_acceleration: Option<Vec<f64>>,
+}
+
+impl AxesTable {
+    /// The given axes in case order.
+    fn axes(&self) -> Vec<(Axis, Vec<AxisValue>)> {
+        let numbers = |v: &Option<Vec<f64>>| {
+            v.as_ref()
+                .map(|v| v.iter().map(|x| AxisValue::Number(*x)).collect::<Vec<_>>())
+        };
+        Axis::ALL
+            .into_iter()
+            .filter_map(|axis| {
+                let values = match axis {
+                    Axis::Level => numbers(&self.level),
+                    Axis::SqrtKappa => numbers(&self.sqrt_kappa),
+                    Axis::Kappa => numbers(&self.kappa),
+                    Axis::Harmonics => self
+                        .harmonics
+                        .as_ref()
+                        .map(|v| v.iter().map(|n| AxisValue::Integer(*n)).collect()),
+                    Axis::Sigma => self
+                        .sigma
+                        .as_ref()
+                        .map(|v| v.iter().map(|b| AxisValue::Bool(*b)).collect()),
+                    Axis::Stroke => numbers(&self.stroke),
+                    Axis::Duty => numbers(&self.duty),
+                    Axis::MuStatic => numbers(&self.mu_static),
+                    Axis::MuDynamic => numbers(&self.mu_dynamic),
+                    Axis::ContactForce => numbers(&self.contact_force),
+                    Axis::SliderMass => numbers(&self.slider_mass),
+                    Axis::ExtraAcceleration => numbers(&self.extra_acceleration),
+                };
+                values.map(|v| (axis, v))
+            })
+            .collect()
+    }
+}
+
+/// The `[outputs]` table of a sweep file.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepOutputsTable {
+    /// Indicator names; `None`: the base scene's.
+    #[serde(default)]
+    pub indicators: Option<Vec<String>>,
+    /// `csv` (default) or `jsonl`.
+    #[serde(default)]
+    pub format: Option<Format>,
+}
+
+/// One case of a sweep: its index, its axis values and the scene it runs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Case {
+    /// Position in the grid, `0..N` (see the module docs).
+    pub index: usize,
+    /// The value of every axis, in axis order.
+    pub values: Vec<(Axis, AxisValue)>,
+    /// The validated scene.
+    pub scene: Scene,
+}
+
+impl Case {
+    /// The value of `axis`, if the sweep varies it.
+    pub fn value(&self, axis: Axis) -> Option<AxisValue> {
+        self.values
+            .iter()
+            .find_map(|(a, v)| (*a == axis).then_some(*v))
+    }
+
+    /// `name = value, ...` of every axis.
+    pub fn describe(&self) -> String {
+        self.values
+            .iter()
+            .map(|(a, v)| format!("{a} = {v}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+/// A loaded, validated sweep.
+#[derive(Debug, Clone)]
+pub struct Sweep {
+    origin: String,
+    base: Scene,
+    axes: Vec<(Axis, Vec<AxisValue>)>,
+    format: Format,
+    len: usize,
+}
+
+/// Reads, parses and validates a sweep file.
+pub fn load(path: impl AsRef<Path>) -> Result<Sweep, SweepError> {
+    let path = path.as_ref();
+    let origin = path.display().to_string();
+    let text = crate::scene::read_input(path).map_err(|source| SweepError::Io {
+        path: origin.clone(),
+        source,
+    })?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    Sweep::from_toml_str(&text, &origin, dir)
+}
+
+impl Sweep {
+    /// Parses and validates a sweep from TOML text; `origin` names it in
+    /// errors and `dir` is where a relative `base` path starts.
+    pub fn from_toml_str(text: &str, origin: &str, dir: &Path) -> Result<Sweep, SweepError> {
+        let file: SweepFile = toml::from_str(text).map_err(|e| SweepError::Parse {
+            path: origin.to_owned(),
+            message: one_line(text, &e),
+        })?;
+        Self::from_file(file, origin, dir)
+    }
+
+    /// Validates a parsed sweep file.
+    pub fn from_file(file: SweepFile, origin: &str, dir: &Path) -> Result<Sweep, SweepError> {
+        let param = |source: ParamError| SweepError::Param {
+            path: origin.to_owned(),
+            source,
+        };
+        let mut base = match &file.base {
+            Some(p) => Scene::from_path(&dir.join(p)).map_err(|source| SweepError::Base {
+                path: origin.to_owned(),
+                source: Box::new(source),
+            })?,
+            None => Scene::default(),
+        };
+        base.outputs.trajectory = false;
+        base.outputs.events = false;
+        let outputs = file.outputs.unwrap_or_default();
+        if let Some(names) = outputs.indicators {
+            let mut wanted = Vec::new();
+            for name in &names {
+                let indicator = name
+                    .parse::<Indicator>()
+                    .map_err(|e| ParamError::Inconsistent {
+                        field: "outputs.indicators".to_owned(),
+                        reason: e.to_string(),
+                    })
+                    .map_err(param)?;
+                wanted.push(indicator);
+            }
+            base.outputs.indicators = wanted;
+            base.validate().map_err(param)?;
+        }
+        let axes = file.axes.axes();
+        let shape_axes: Vec<_> = axes
+            .iter()
+            .map(|(a, _)| *a)
+            .filter(|a| matches!(a, Axis::Level | Axis::SqrtKappa | Axis::Kappa))
+            .collect();
+        if shape_axes.len() > 1 {
+            return Err(param(ParamError::Inconsistent {
+                field: format!("axes.{}", shape_axes[1]),
+                reason: format!(
+                    "give at most one of axes.level, axes.sqrt_kappa and axes.kappa (also given: axes.{})",
+                    shape_axes[0]
+                ),
+            }));
+        }
+        let mut count: u128 = 1;
+        for (axis, values) in &axes {
+            let field = format!("axes.{axis}");
+            if values.is_empty() {
+                return Err(param(ParamError::Inconsistent {
+                    field,
+                    reason: "is empty: give at least one value".to_owned(),
+                }));
+            }
+            if let Some(reason) = axis.unfit_for(&base.signal) {
+                return Err(param(ParamError::Inconsistent { field, reason }));
+            }
+            for (i, value) in values.iter().enumerate() {
+                let field = format!("{field}[{i}]");
+                axis.check(&field, *value).map_err(param)?;
+                if let Some(j) = values[..i].iter().position(|v| v.key() == value.key()) {
+                    let reason = format!("repeats axes.{axis}[{j}]");
+                    return Err(param(match value.as_f64() {
+                        Some(x) => ParamError::out_of_range(&field, x, reason),
+                        None => ParamError::Inconsistent {
+                            field,
+                            reason: format!("{value} {reason}"),
+                        },
+                    }));
+                }
+            }
+            count = count.saturating_mul(values.len() as u128);
+        }
+        let len = usize::try_from(count)
+            .ok()
+            .filter(|c| *c <= MAX_CASES)
+            .ok_or_else(|| SweepError::TooLarge {
+                path: origin.to_owned(),
+                cases: count,
+                max: MAX_CASES,
+            })?;
+        // Every case, in parallel, without keeping them; the first bad one
+        // by index is reported, whatever the thread count.
+        let bad = (0..len).into_par_iter().find_map_first(|index| {
+            let case = make_case(&base, &axes, index);
+            case.scene.validate().err().map(|e| (case, e))
+        });
+        if let Some((case, source)) = bad {
+            return Err(SweepError::Case {
+                path: origin.to_owned(),
+                case: case.index,
+                values: case.describe(),
+                source: Box::new(source),
+            });
+        }
+        Ok(Sweep {
+            origin: origin.to_owned(),
+            base,
+            axes,
+            format: outputs.format.unwrap_or_default(),
+            len,
+        })
+    }
+
+    /// Case `index` (`0 <= index < len()`), made from its index; `None`
+    /// past the end.
+    pub fn case(&self, index: usize) -> Option<Case> {
+        (index < self.len).then(|| make_case(&self.base, &self.axes, index))
+    }
+
+    /// Every case, in index order. This holds the whole grid: for large
+    /// sweeps use [`Sweep::case`].
+    pub fn cases(&self) -> Vec<Case> {
+        (0..self.len)
+            .map(|i| make_case(&self.base, &self.axes, i))
+            .collect()
+    }
+
+    /// Number of cases.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True for a sweep without cases (never: a sweep without axes has one).
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The base scene, with the sweep's indicators.
+    pub fn base(&self) -> &Scene {
+        &self.base
+    }
+
+    /// The axes and their values, in case order.
+    pub fn axes(&self) -> &[(Axis, Vec<AxisValue>)] {
+        &self.axes
+    }
+
+    /// The output format the sweep file asks for.
+    pub fn format(&self) -> Format {
+        self.format
+    }
+
+    /// Where the sweep came from (its path, or `<string>`).
+    pub fn origin(&self) -> &str {
+        &self.origin
+    }
+
+    /// The output columns (see the module docs).
+    pub fn columns(&self, timing: bool) -> Vec<String> {
+        super::table::column_kinds(self, timing)
+            .iter()
+            .map(|c| c.name().to_owned())
+            .collect()
+    }
+
+    /// The default output file: `<sweep file stem>.<ext>`, or
+    /// `<stem>.<i>-of-<N>.<ext>` for a shard, in the current directory.
+    pub fn default_output(&self, shard: Option<Shard>) -> PathBuf {
+        let stem = Path::new(&self.origin)
+            .file_stem()
+            .map_or("sweep".to_owned(), |s| s.to_string_lossy().into_owned());
+        let ext = self.format.extension();
+        PathBuf::from(match shard {
+            Some(s) => format!("{stem}.{}-of-{}.{ext}", s.index, s.count),
+            None => format!("{stem}.{ext}"),
+        })
+    }
+}
+
+fn make_case(base: &Scene, axes: &[(Axis, Vec<AxisValue>)], index: usize) -> Case {
+    let mut rest = index;
+    let mut values = vec![(Axis::Level, AxisValue::Bool(false)); axes.len()];
+    for (slot, (axis, list)) in values.iter_mut().zip(axes).rev() {
+        *slot = (*axis, list[rest % list.len()]);
+        rest /= list.len();
+    }
+    let mut scene = base.clone();
+    for (axis, value) in &values {
+        axis.apply(&mut scene, *value);
+    }
+    // After `harmonics`, which `level` divides by.
+    for (axis, value) in &values {
+        if let (Axis::Level, Some(level)) = (axis, value.as_f64()) {
+            set_level(&mut scene, level);
+        }
+    }
+    Case {
+        index,
+        values,
+        scene,
+    }
+}
+
+/// A TOML error on one line: the message, then line, column and the
+/// offending line's text.
+fn one_line(text: &str, error: &toml::de::Error) -> String {
+    let message = error
+        .message()
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ");
+    let Some(span) = error.span() else {
+        return message;
+    };
+    let before = text.get(..span.start).unwrap_or("");
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    let source = text.lines().nth(line - 1).unwrap_or("").trim();
+    format!("{message} (line {line}, column {column}: {source})")
+}
+/// A shard `i/N` of a sweep: the cases with `index % N == i - 1`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// `i`, 1-based: `1 <= index <= count`.
+    pub index: usize,
+    /// `N >= 1`.
+    pub count: usize,
+}
+
+impl Shard {
+    /// True if case `case` belongs to this shard.
+    pub fn contains(self, case: usize) -> bool {
+        case % self.count == self.index - 1
+    }
+
+    /// The cases of this shard among `0..len`, in order.
+    pub fn cases(self, len: usize) -> impl Iterator<Item = usize> {
+        (self.index - 1..len).step_by(self.count)
+    }
+}
+
+impl FromStr for Shard {
+    type Err = SweepError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let bad = |reason: &str| SweepError::Shard {
+            given: s.to_owned(),
+            reason: reason.to_owned(),
+        };
+        let (i, n) = s
+            .split_once('/')
+            .ok_or_else(|| bad("expected i/N, e.g. 2/8"))?;
+        let parse = |x: &str| x.trim().parse::<usize>().ok();
+        match (parse(i), parse(n)) {
+            (Some(index), Some(count)) if count >= 1 && (1..=count).contains(&index) => {
+                Ok(Shard { index, count })
+            }
+            (Some(_), Some(_)) => Err(bad("needs 1 <= i <= N (i is 1-based)")),
+            _ => Err(bad("expected two whole numbers i/N, e.g. 2/8")),
+        }
+    }
+}
+
+impl fmt::Display for Shard {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}

@@ -1,0 +1,643 @@
+//! Output files: the header line, the columns, rendering a case's row, and
+//! reading a file back strictly (every cell must be one a sweep could have
+//! written), for resuming and merging.
+
+use super::execute::CaseResult;
+use super::grid::{Axis, AxisKey, AxisValue, Case, Format, MAX_CASES, Sweep};
+use crate::error::{Error, SweepError};
+use crate::provenance::{VERSION, scene_hash};
+use crate::scene::Indicator;
+use std::path::Path;
+
+/// The first line of an output file: the program that wrote it and the
+/// fingerprint of the sweep's base scene.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(super) struct Meta {
+    pub version: String,
+    pub base_scene_hash: String,
+}
+
+impl Meta {
+    /// The header this program writes for `sweep`.
+    pub fn of(sweep: &Sweep) -> Meta {
+        Meta {
+            version: VERSION.to_owned(),
+            base_scene_hash: scene_hash(sweep.base()),
+        }
+    }
+
+    fn line(&self, format: Format) -> String {
+        match format {
+            Format::Csv => format!(
+                "# stickslip_version = {}, base_scene_hash = {}",
+                self.version, self.base_scene_hash
+            ),
+            Format::Jsonl => serde_json::json!({
+                "stickslip_version": self.version,
+                "base_scene_hash": self.base_scene_hash,
+            })
+            .to_string(),
+        }
+    }
+
+    fn parse_csv(line: &str) -> Option<Meta> {
+        let rest = line.strip_prefix("# ")?;
+        let mut version = None;
+        let mut base = None;
+        for item in rest.split(", ") {
+            match item.split_once(" = ")? {
+                ("stickslip_version", v) => version = Some(v.to_owned()),
+                ("base_scene_hash", h) => base = Some(h.to_owned()),
+                _ => return None,
+            }
+        }
+        Some(Meta {
+            version: version?,
+            base_scene_hash: base?,
+        })
+    }
+
+    fn parse_json(map: &serde_json::Map<String, serde_json::Value>) -> Option<Meta> {
+        if map.len() != 2 {
+            return None;
+        }
+        Some(Meta {
+            version: map.get("stickslip_version")?.as_str()?.to_owned(),
+            base_scene_hash: map.get("base_scene_hash")?.as_str()?.to_owned(),
+        })
+    }
+}
+
+/// The columns `sweep` writes, in order (see the module docs of
+/// [`crate::sweep`]).
+pub(super) fn column_kinds(sweep: &Sweep, timing: bool) -> Vec<Column> {
+    let mut columns = vec![Column::Case];
+    columns.extend(sweep.axes().iter().map(|(a, _)| Column::Axis(*a)));
+    columns.push(Column::SceneHash);
+    for indicator in Indicator::ALL {
+        if sweep.base().outputs.indicators.contains(&indicator) {
+            columns.push(Column::Indicator(indicator));
+            match indicator {
+                Indicator::StictionFraction => columns.push(Column::StictionSteady),
+                Indicator::VelocityPerPower => columns.push(Column::ApparentPower),
+                _ => {}
+            }
+        }
+    }
+    columns.extend([
+        Column::Period,
+        Column::StartupPeriods,
+        Column::PeriodsSimulated,
+        Column::EventsTotal,
+    ]);
+    if timing {
+        columns.push(Column::WallTime);
+    }
+    columns.extend([Column::ErrorVInf, Column::Failure]);
+    columns
+}
+
+/// One cell of an output row.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Cell {
+    Empty,
+    Number(f64),
+    Integer(i64),
+    Unsigned(u64),
+    Bool(bool),
+    Text(String),
+}
+
+impl Cell {
+    fn number(x: Option<f64>) -> Cell {
+        match x {
+            Some(x) if x.is_finite() => Cell::Number(x),
+            _ => Cell::Empty,
+        }
+    }
+
+    fn axis(value: AxisValue) -> Cell {
+        match value {
+            AxisValue::Number(x) => Cell::Number(x),
+            AxisValue::Integer(n) => Cell::Integer(n),
+            AxisValue::Bool(b) => Cell::Bool(b),
+        }
+    }
+
+    /// The exact key of an axis cell, `None` for other cells.
+    pub fn axis_key(&self) -> Option<AxisKey> {
+        match self {
+            Cell::Number(x) => Some(AxisValue::Number(*x).key()),
+            Cell::Integer(n) => Some(AxisValue::Integer(*n).key()),
+            Cell::Bool(b) => Some(AxisValue::Bool(*b).key()),
+            _ => None,
+        }
+    }
+
+    fn csv(&self) -> String {
+        match self {
+            Cell::Empty => String::new(),
+            // Shortest round-tripping digits; exponent form where plain
+            // decimals would run long.
+            Cell::Number(x) if *x == 0.0 || (1e-4..1e16).contains(&x.abs()) => format!("{x}"),
+            Cell::Number(x) => format!("{x:e}"),
+            Cell::Integer(n) => n.to_string(),
+            Cell::Unsigned(n) => n.to_string(),
+            Cell::Bool(b) => b.to_string(),
+            Cell::Text(s) => s.clone(),
+        }
+    }
+
+    fn json(&self) -> serde_json::Value {
+        match self {
+            Cell::Empty => serde_json::Value::Null,
+            Cell::Number(x) => serde_json::json!(x),
+            Cell::Integer(n) => serde_json::json!(n),
+            Cell::Unsigned(n) => serde_json::json!(n),
+            Cell::Bool(b) => serde_json::json!(b),
+            Cell::Text(s) => serde_json::json!(s),
+        }
+    }
+}
+
+/// An output column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Column {
+    Case,
+    Axis(Axis),
+    SceneHash,
+    Indicator(Indicator),
+    StictionSteady,
+    ApparentPower,
+    Period,
+    StartupPeriods,
+    PeriodsSimulated,
+    EventsTotal,
+    WallTime,
+    ErrorVInf,
+    Failure,
+}
+
+impl Column {
+    pub fn name(self) -> &'static str {
+        match self {
+            Column::Case => "case",
+            Column::Axis(a) => a.name(),
+            Column::SceneHash => "scene_hash",
+            Column::Indicator(i) => i.name(),
+            Column::StictionSteady => "stiction_fraction_steady",
+            Column::ApparentPower => "apparent_power",
+            Column::Period => "period",
+            Column::StartupPeriods => "startup_periods",
+            Column::PeriodsSimulated => "periods_simulated",
+            Column::EventsTotal => "events_total",
+            Column::WallTime => "wall_time_s",
+            Column::ErrorVInf => "error_v_inf",
+            Column::Failure => "failure",
+        }
+    }
+
+    fn from_name(name: &str) -> Option<Column> {
+        const FIXED: [Column; 10] = [
+            Column::Case,
+            Column::SceneHash,
+            Column::StictionSteady,
+            Column::ApparentPower,
+            Column::Period,
+            Column::StartupPeriods,
+            Column::PeriodsSimulated,
+            Column::EventsTotal,
+            Column::WallTime,
+            Column::ErrorVInf,
+        ];
+        FIXED
+            .into_iter()
+            .chain([Column::Failure])
+            .chain(Axis::ALL.map(Column::Axis))
+            .chain(Indicator::ALL.map(Column::Indicator))
+            .find(|c| c.name() == name)
+    }
+
+    /// The position in the column order of [`column_kinds`]: JSON objects
+    /// do not keep the order of their keys, so it is restored from this.
+    fn rank(self) -> usize {
+        let indicator = |i: Indicator| Indicator::ALL.iter().position(|x| *x == i).unwrap_or(0);
+        match self {
+            Column::Case => 0,
+            Column::Axis(a) => 1 + Axis::ALL.iter().position(|x| *x == a).unwrap_or(0),
+            Column::SceneHash => 20,
+            Column::Indicator(i) => 30 + 2 * indicator(i),
+            Column::StictionSteady => 31 + 2 * indicator(Indicator::StictionFraction),
+            Column::ApparentPower => 31 + 2 * indicator(Indicator::VelocityPerPower),
+            Column::Period => 50,
+            Column::StartupPeriods => 51,
+            Column::PeriodsSimulated => 52,
+            Column::EventsTotal => 53,
+            Column::WallTime => 54,
+            Column::ErrorVInf => 55,
+            Column::Failure => 56,
+        }
+    }
+
+    /// The cell of this column for `case` and its result.
+    pub fn cell(self, case: &Case, result: &Result<CaseResult, Error>) -> Cell {
+        match self {
+            Column::Case => return Cell::Unsigned(case.index as u64),
+            Column::Axis(a) => return case.value(a).map_or(Cell::Empty, Cell::axis),
+            Column::SceneHash => return Cell::Text(scene_hash(&case.scene)),
+            Column::Failure => {
+                return match result {
+                    Ok(_) => Cell::Empty,
+                    Err(e) => Cell::Text(e.to_string().replace(['\n', '\r'], " ")),
+                };
+            }
+            _ => {}
+        }
+        let Ok(CaseResult { report: r, .. }) = result else {
+            return Cell::Empty;
+        };
+        let ind = &r.indicators;
+        match self {
+            Column::Indicator(indicator) => Cell::number(match indicator {
+                Indicator::VInf => Some(ind.v_inf),
+                Indicator::StartupTime => r.startup_time(),
+                Indicator::Smoothness => Some(ind.smoothness),
+                Indicator::Durability => Some(ind.durability),
+                Indicator::FrictionEnergy => Some(ind.friction_energy),
+                Indicator::StictionFraction => r.stiction_fraction_transient,
+                Indicator::VelocityPerPower => r.velocity_per_power(),
+            }),
+            Column::StictionSteady => Cell::number(Some(ind.stiction_fraction)),
+            Column::ApparentPower => Cell::number(r.power.as_ref().map(|p| p.apparent_power)),
+            Column::Period => Cell::number(Some(r.period)),
+            Column::StartupPeriods => r.startup_periods.map_or(Cell::Empty, Cell::Unsigned),
+            Column::PeriodsSimulated => {
+                Cell::Unsigned(r.transient.as_ref().map_or(0, |t| t.periods()))
+            }
+            Column::EventsTotal => Cell::Unsigned(r.events().total()),
+            Column::WallTime => Cell::number(Some(r.wall_time.as_secs_f64())),
+            Column::ErrorVInf => Cell::number(r.error.v_inf),
+            Column::Case | Column::Axis(_) | Column::SceneHash | Column::Failure => {
+                unreachable!("handled above")
+            }
+        }
+    }
+
+    /// What a cell of this column may hold, for error messages.
+    fn expects(self) -> String {
+        match self {
+            Column::Case => {
+                return format!("a case index below {MAX_CASES} (the most cases a sweep has)");
+            }
+            Column::StartupPeriods | Column::PeriodsSimulated | Column::EventsTotal => {
+                "a whole number or nothing"
+            }
+            Column::SceneHash => "16 hexadecimal digits",
+            Column::Failure => "text or nothing",
+            Column::Axis(Axis::Harmonics) => "an integer",
+            Column::Axis(Axis::Sigma) => "true or false",
+            Column::Axis(_) => "a number",
+            _ => "a finite number or nothing",
+        }
+        .to_owned()
+    }
+
+    /// A cell read back: it must be one this column can hold (a finite
+    /// number, an axis value its axis accepts, ...).
+    fn check(self, cell: Cell) -> Result<Cell, String> {
+        let ok = match (self, &cell) {
+            (Column::Case, Cell::Unsigned(case)) => *case < MAX_CASES as u64,
+            // Empty in the row of a case that failed.
+            (
+                Column::StartupPeriods | Column::PeriodsSimulated | Column::EventsTotal,
+                Cell::Unsigned(_) | Cell::Empty,
+            ) => true,
+            (Column::SceneHash, Cell::Text(s)) => {
+                s.len() == 16 && s.bytes().all(|b| b.is_ascii_hexdigit())
+            }
+            (Column::Failure, Cell::Text(_) | Cell::Empty) => true,
+            (Column::Axis(axis), cell) => match (axis, cell) {
+                (Axis::Harmonics, Cell::Integer(n)) => axis.accepts(AxisValue::Integer(*n)),
+                (Axis::Sigma, Cell::Bool(_)) => true,
+                (Axis::Harmonics | Axis::Sigma, _) => false,
+                (_, Cell::Number(x)) => axis.accepts(AxisValue::Number(*x)),
+                _ => false,
+            },
+            (
+                Column::Indicator(_)
+                | Column::StictionSteady
+                | Column::ApparentPower
+                | Column::Period
+                | Column::WallTime
+                | Column::ErrorVInf,
+                Cell::Number(x),
+            ) => x.is_finite(),
+            (
+                Column::Indicator(_)
+                | Column::StictionSteady
+                | Column::ApparentPower
+                | Column::Period
+                | Column::WallTime
+                | Column::ErrorVInf,
+                Cell::Empty,
+            ) => true,
+            _ => false,
+        };
+        if ok {
+            Ok(cell)
+        } else {
+            Err(format!("must be {}", self.expects()))
+        }
+    }
+
+    /// Reads a CSV field of this column.
+    fn parse_csv(self, text: &str) -> Result<Cell, String> {
+        let cell = if text.is_empty() {
+            Cell::Empty
+        } else {
+            match self {
+                Column::Case
+                | Column::StartupPeriods
+                | Column::PeriodsSimulated
+                | Column::EventsTotal => {
+                    text.parse().map_or(Cell::Text(text.into()), Cell::Unsigned)
+                }
+                Column::Axis(Axis::Harmonics) => {
+                    text.parse().map_or(Cell::Text(text.into()), Cell::Integer)
+                }
+                Column::Axis(Axis::Sigma) => {
+                    text.parse().map_or(Cell::Text(text.into()), Cell::Bool)
+                }
+                Column::SceneHash | Column::Failure => Cell::Text(text.into()),
+                _ => text.parse().map_or(Cell::Text(text.into()), Cell::Number),
+            }
+        };
+        self.check(cell)
+    }
+
+    /// Reads a JSON value of this column.
+    fn parse_json(self, value: &serde_json::Value) -> Result<Cell, String> {
+        use serde_json::Value;
+        let cell = match (self, value) {
+            (_, Value::Null) => Cell::Empty,
+            (_, Value::Bool(b)) => Cell::Bool(*b),
+            (_, Value::String(s)) => Cell::Text(s.clone()),
+            (
+                Column::Case
+                | Column::StartupPeriods
+                | Column::PeriodsSimulated
+                | Column::EventsTotal,
+                Value::Number(n),
+            ) => n.as_u64().map_or(Cell::Empty, Cell::Unsigned),
+            (Column::Axis(Axis::Harmonics), Value::Number(n)) => {
+                n.as_i64().map_or(Cell::Empty, Cell::Integer)
+            }
+            (_, Value::Number(n)) => n.as_f64().map_or(Cell::Empty, Cell::Number),
+            _ => Cell::Text(value.to_string()),
+        };
+        // A number that did not fit its column's type reads as nothing,
+        // which the check refuses where a value is required.
+        if matches!(value, Value::Number(_)) && cell == Cell::Empty {
+            return Err(format!("must be {}", self.expects()));
+        }
+        self.check(cell)
+    }
+}
+
+/// How the columns `found` differ from `wanted`.
+pub(super) fn column_difference(found: &[Column], wanted: &[Column]) -> String {
+    let names = |a: &[Column], b: &[Column]| {
+        a.iter()
+            .filter(|c| !b.contains(c))
+            .map(|c| c.name())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let (extra, missing) = (names(found, wanted), names(wanted, found));
+    match (extra.is_empty(), missing.is_empty()) {
+        (true, true) => "the same columns in another order".to_owned(),
+        (false, true) => format!("the extra columns {extra}"),
+        (true, false) => format!("no columns {missing}"),
+        (false, false) => format!("the extra columns {extra} and no columns {missing}"),
+    }
+}
+
+/// One CSV record, without the line end.
+fn csv_line<S: AsRef<[u8]>>(fields: &[S]) -> String {
+    let mut writer = csv::WriterBuilder::new()
+        .terminator(csv::Terminator::Any(b'\n'))
+        .from_writer(Vec::new());
+    // Writing to memory cannot fail.
+    let _ = writer.write_record(fields);
+    let bytes = writer.into_inner().unwrap_or_default();
+    let mut line = String::from_utf8_lossy(&bytes).into_owned();
+    if line.ends_with('\n') {
+        line.pop();
+    }
+    line
+}
+
+/// The layout of an output file: format, header and columns.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Layout {
+    pub format: Format,
+    pub meta: Meta,
+    pub columns: Vec<Column>,
+}
+
+impl Layout {
+    /// A row as one line, without the line end.
+    pub fn render(&self, cells: &[Cell]) -> String {
+        match self.format {
+            Format::Csv => csv_line(&cells.iter().map(Cell::csv).collect::<Vec<_>>()),
+            Format::Jsonl => {
+                let fields: Vec<String> = self
+                    .columns
+                    .iter()
+                    .zip(cells)
+                    .map(|(c, cell)| format!("{}:{}", serde_json::json!(c.name()), cell.json()))
+                    .collect();
+                format!("{{{}}}", fields.join(","))
+            }
+        }
+    }
+
+    /// The lines before the rows, each with its line end.
+    pub fn head(&self) -> String {
+        let mut out = self.meta.line(self.format);
+        out.push('\n');
+        if self.format == Format::Csv {
+            let names: Vec<&str> = self.columns.iter().map(|c| c.name()).collect();
+            out.push_str(&csv_line(&names));
+            out.push('\n');
+        }
+        out
+    }
+
+    /// Position of a column.
+    pub fn position(&self, column: Column) -> Option<usize> {
+        self.columns.iter().position(|c| *c == column)
+    }
+}
+
+/// A row read back.
+#[derive(Debug, Clone)]
+pub(super) struct Row {
+    /// Its case index.
+    pub case: u64,
+    /// Its line number in the file (1-based).
+    pub line: usize,
+    /// Its cells, in column order.
+    pub cells: Vec<Cell>,
+}
+
+/// An output file read back.
+#[derive(Debug)]
+pub(super) struct Parsed {
+    /// The format; `None` for an empty file.
+    pub format: Option<Format>,
+    /// The header line, if the file has one.
+    pub meta: Option<Meta>,
+    /// The columns; `None` for a file without a column header or a row.
+    pub columns: Option<Vec<Column>>,
+    /// The complete rows, in file order.
+    pub rows: Vec<Row>,
+    /// The number of an incomplete last line (no line end), if any.
+    pub truncated: Option<usize>,
+}
+
+/// Reads an output file. Every complete line must be a header line, the
+/// column header or a valid row; errors name the file, the line and the
+/// column.
+pub(super) fn parse(path: &Path, text: &str) -> Result<Parsed, SweepError> {
+    let bad = |line: usize, reason: String| SweepError::Output {
+        path: path.display().to_string(),
+        reason: format!("line {line}: {reason}"),
+    };
+    let complete = &text[..text.rfind('\n').map_or(0, |i| i + 1)];
+    let truncated = (complete.len() < text.len()).then(|| complete.lines().count() + 1);
+    let mut lines = complete
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l))
+        .peekable();
+    let mut parsed = Parsed {
+        format: None,
+        meta: None,
+        columns: None,
+        rows: Vec::new(),
+        truncated,
+    };
+    let Some(&(_, first)) = lines.peek() else {
+        return Ok(parsed);
+    };
+    if first.starts_with('{') {
+        parsed.format = Some(Format::Jsonl);
+        for (number, line) in lines {
+            let value: serde_json::Value =
+                serde_json::from_str(line).map_err(|e| bad(number, format!("not JSON: {e}")))?;
+            let serde_json::Value::Object(map) = value else {
+                return Err(bad(number, "not a JSON object".into()));
+            };
+            if number == 1
+                && let Some(meta) = Meta::parse_json(&map)
+            {
+                parsed.meta = Some(meta);
+                continue;
+            }
+            let mut columns = Vec::new();
+            for key in map.keys() {
+                columns.push(
+                    Column::from_name(key)
+                        .ok_or_else(|| bad(number, format!("unknown column \"{key}\"")))?,
+                );
+            }
+            columns.sort_by_key(|c| c.rank());
+            match &parsed.columns {
+                None => parsed.columns = Some(columns.clone()),
+                Some(c) if *c != columns => {
+                    return Err(bad(
+                        number,
+                        format!(
+                            "has {} compared with the rows above",
+                            column_difference(&columns, c)
+                        ),
+                    ));
+                }
+                Some(_) => {}
+            }
+            let mut cells = Vec::with_capacity(columns.len());
+            for column in &columns {
+                let cell = column.parse_json(&map[column.name()]).map_err(|reason| {
+                    bad(
+                        number,
+                        format!("{} = {}: {reason}", column.name(), map[column.name()]),
+                    )
+                })?;
+                cells.push(cell);
+            }
+            let row = row(number, cells).ok_or_else(|| bad(number, "no case index".into()))?;
+            parsed.rows.push(row);
+        }
+        return Ok(parsed);
+    }
+    parsed.format = Some(Format::Csv);
+    let mut offset = 0;
+    if let Some(meta) = Meta::parse_csv(first) {
+        parsed.meta = Some(meta);
+        lines.next();
+        offset = 1;
+    }
+    let rest: String = lines.map(|(_, l)| format!("{l}\n")).collect();
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .from_reader(rest.as_bytes());
+    let mut records = reader.records();
+    let Some(header) = records.next() else {
+        return Ok(parsed);
+    };
+    let header = header.map_err(|e| bad(offset + 1, format!("unreadable CSV header: {e}")))?;
+    if header.get(0) != Some("case") {
+        return Err(bad(
+            offset + 1,
+            "not a sweep output: the first column is not \"case\"".into(),
+        ));
+    }
+    let mut columns = Vec::new();
+    for name in &header {
+        columns.push(
+            Column::from_name(name)
+                .ok_or_else(|| bad(offset + 1, format!("unknown column \"{name}\"")))?,
+        );
+    }
+    for record in records {
+        let record = record.map_err(|e| {
+            let line = e.position().map_or(0, |p| p.line() as usize);
+            bad(offset + line, format!("unreadable CSV row: {e}"))
+        })?;
+        let number = offset + record.position().map_or(0, |p| p.line() as usize);
+        let mut cells = Vec::with_capacity(columns.len());
+        for (column, field) in columns.iter().zip(&record) {
+            let cell = column.parse_csv(field).map_err(|reason| {
+                bad(number, format!("{} = \"{field}\": {reason}", column.name()))
+            })?;
+            cells.push(cell);
+        }
+        let row = row(number, cells).ok_or_else(|| bad(number, "no case index".into()))?;
+        parsed.rows.push(row);
+    }
+    parsed.columns = Some(columns);
+    Ok(parsed)
+}
+
+/// A row from its cells; `None` without a `case` cell first.
+fn row(line: usize, cells: Vec<Cell>) -> Option<Row> {
+    match cells.first() {
+        Some(Cell::Unsigned(case)) => Some(Row {
+            case: *case,
+            line,
+            cells,
+        }),
+        _ => None,
+    }
+}
