@@ -1151,7 +1151,7 @@ fn outputs(
 /// in the parsed document or, when the text does not parse, from the
 /// offending line and the table above it), the parser's message, line and
 /// column, and the offending line itself.
-fn parse_message(text: &str, error: &toml::de::Error) -> String {
+pub(crate) fn parse_message(text: &str, error: &toml::de::Error) -> String {
     let message = error
         .message()
         .lines()

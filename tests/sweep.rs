@@ -386,7 +386,7 @@ fn bad_sweep_files_are_refused_before_anything_runs() {
         ("[axes]\nlevels = [3]\n", "unknown field `levels`"),
         (
             "[axes]\nharmonics = [2.5]\n",
-            "invalid type: floating point `2.5`, expected i64 (line 2, column 14: harmonics = [2.5])",
+            "axes.harmonics[0]: invalid type: floating point `2.5`, expected i64 (line 2, column 14: `harmonics = [2.5]`)",
         ),
         ("bases = \"x\"\n", "unknown field `bases`"),
         (

@@ -467,7 +467,7 @@ impl Sweep {
     pub fn from_toml_str(text: &str, origin: &str, dir: &Path) -> Result<Sweep, SweepError> {
         let file: SweepFile = toml::from_str(text).map_err(|e| SweepError::Parse {
             path: origin.to_owned(),
-            message: one_line(text, &e),
+            message: crate::scene::parse_message(text, &e),
         })?;
         Self::from_file(file, origin, dir)
     }
@@ -667,25 +667,6 @@ fn make_case(base: &Scene, axes: &[(Axis, Vec<AxisValue>)], index: usize) -> Cas
     }
 }
 
-/// A TOML error on one line: the message, then line, column and the
-/// offending line's text.
-fn one_line(text: &str, error: &toml::de::Error) -> String {
-    let message = error
-        .message()
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty())
-        .collect::<Vec<_>>()
-        .join("; ");
-    let Some(span) = error.span() else {
-        return message;
-    };
-    let before = text.get(..span.start).unwrap_or("");
-    let line = before.matches('\n').count() + 1;
-    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    let source = text.lines().nth(line - 1).unwrap_or("").trim();
-    format!("{message} (line {line}, column {column}: {source})")
-}
 /// A shard `i/N` of a sweep: the cases with `index % N == i - 1`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Shard {
