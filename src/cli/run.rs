@@ -30,14 +30,14 @@ pub(crate) fn load(path: Option<&Path>) -> Result<Scene, Failure> {
 
 pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
     let scene = load(args.scene.as_deref())?;
-    let result = simulation::run(&scene).map_err(|e| e.to_string())?;
+    let outcome = simulation::simulate(&scene).map_err(|e| e.to_string())?;
     let text = if args.json {
-        let mut text =
-            serde_json::to_string_pretty(&report::to_json(&result)).map_err(|e| e.to_string())?;
+        let mut text = serde_json::to_string_pretty(&report::to_json(&outcome, &scene))
+            .map_err(|e| e.to_string())?;
         text.push('\n');
         text
     } else {
-        report::to_text(&result)
+        report::to_text(&outcome)
     };
     match args.output {
         Some(path) => crate::output::write_atomically(&path, text.as_bytes())
