@@ -342,7 +342,7 @@ const RATIOS: usize = 3;
 /// size of a change alone (a motion that has barely begun changes little):
 /// * the boundary state (velocity and mode) repeated exactly, so the orbit
 ///   is periodic from there on; or
-/// * the last [`RATIOS`] contraction ratios `rho_k = |c_k / c_(k-1)|` of
+/// * the last three contraction ratios `rho_k = |c_k / c_(k-1)|` of
 ///   the changes `c_k` of the boundary velocity are below 1 and bound the
 ///   remaining distance, `|c| rho / (1 - rho) <= tol` with `rho` the
 ///   largest of them.
@@ -426,7 +426,7 @@ pub fn transient<E: PeriodEngine, O: Observer>(
             continue;
         }
         let rho = ratios.iter().copied().fold(0.0, f64::max);
-        if !(rho < 1.0) {
+        if rho.is_nan() || rho >= 1.0 {
             continue;
         }
         let tail = change.abs() * rho / (1.0 - rho);
@@ -470,7 +470,12 @@ fn reached_startup(v_p: f64, v_inf: f64) -> bool {
 /// acceleration is constant. This is a run-away (the extra acceleration
 /// `g_t` exceeds what sliding friction `a_d` can hold), returned as the
 /// direction it runs in.
-fn runaway(end: &PeriodEnd, events: u64, change: f64, (lo_r, hi_r): (f64, f64)) -> Option<Direction> {
+fn runaway(
+    end: &PeriodEnd,
+    events: u64,
+    change: f64,
+    (lo_r, hi_r): (f64, f64),
+) -> Option<Direction> {
     if events != 0 {
         return None;
     }

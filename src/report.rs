@@ -10,7 +10,7 @@
 //! scene with its fingerprint ([`crate::provenance`]).
 //!
 //! Every indicator has one definition and one unit ([`RunReport::indicator`],
-//! [`unit`]), the same in `run`, `check`, sweeps and figures.
+//! [`unit()`]), the same in `run`, `check`, sweeps and figures.
 
 use crate::Scene;
 use crate::engine::{Direction, EventCounts};
@@ -100,7 +100,10 @@ fn header(outcome: &Outcome, scene: &Scene) -> Map<String, Value> {
     m
 }
 
-fn times_json(m: &mut Map<String, Value>, (setup, simulation, wall): (Duration, Duration, Duration)) {
+fn times_json(
+    m: &mut Map<String, Value>,
+    (setup, simulation, wall): (Duration, Duration, Duration),
+) {
     m.insert("wall_time_s".into(), number(wall.as_secs_f64()));
     m.insert("setup_time_s".into(), number(setup.as_secs_f64()));
     m.insert("simulation_time_s".into(), number(simulation.as_secs_f64()));
@@ -139,7 +142,10 @@ fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled) {
     m.insert("final_velocity".into(), number(u.final_velocity));
     m.insert(
         "v_inf_bounds".into(),
-        json!([option_number(u.v_inf_bounds.0), option_number(u.v_inf_bounds.1)]),
+        json!([
+            option_number(u.v_inf_bounds.0),
+            option_number(u.v_inf_bounds.1)
+        ]),
     );
     m.insert("period".into(), number(u.period));
     m.insert("f0".into(), number(1.0 / u.period));
@@ -285,7 +291,13 @@ fn signal_line(out: &mut String, period: f64, f_max: Option<f64>) {
     );
 }
 
-fn cost_line(out: &mut String, periods: u64, events: u64, roots: u64, times: (Duration, Duration, Duration)) {
+fn cost_line(
+    out: &mut String,
+    periods: u64,
+    events: u64,
+    roots: u64,
+    times: (Duration, Duration, Duration),
+) {
     let (setup, simulation, wall) = times;
     let _ = writeln!(
         out,
@@ -325,7 +337,8 @@ pub fn to_text(outcome: &Outcome) -> String {
                  within {} periods (run.max_periods); v_inf is not reported",
                 state.periods_simulated,
             );
-            let bound = |b: Option<f64>| b.map_or("unknown".to_owned(), |v| format_with_error(v, None));
+            let bound =
+                |b: Option<f64>| b.map_or("unknown".to_owned(), |v| format_with_error(v, None));
             let _ = writeln!(
                 out,
                 "  v_inf lies between {} and {} m/s",
@@ -366,7 +379,8 @@ fn steady_text(r: &RunReport) -> String {
     signal_line(&mut out, r.period, r.f_max);
     let _ = writeln!(out, "steady state: {}", r.regime().name());
     let _ = writeln!(out, "indicators (± estimated absolute error):");
-    let shown = |i: Indicator| with_estimate(r.indicator(i).unwrap_or(f64::NAN), r.indicator_error(i));
+    let shown =
+        |i: Indicator| with_estimate(r.indicator(i).unwrap_or(f64::NAN), r.indicator_error(i));
     for indicator in &r.requested {
         let name = indicator.name();
         match indicator {

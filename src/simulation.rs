@@ -488,7 +488,8 @@ pub fn established_bound(signal: &Signal, steady: &SteadyState) -> Option<f64> {
 /// point `v_star` (beyond its bound) in the direction it moves: then the
 /// fixed point is not the limit (see the module docs, 2.).
 fn orbit_passes(transient: &Transient, periods: u64, v_star: f64, bound: f64) -> bool {
-    let seen = &transient.boundary_velocities[..(periods as usize).min(transient.boundary_velocities.len())];
+    let seen = &transient.boundary_velocities
+        [..(periods as usize).min(transient.boundary_velocities.len())];
     if v_star >= 0.0 {
         seen.iter().any(|u| *u > v_star + bound)
     } else {
@@ -580,8 +581,7 @@ fn simulate_timed<E: PeriodEngine>(
                 ));
             }
             let seed = transient.final_velocity;
-            let reach =
-                transient.remaining.unwrap_or(0.0) + transient.v_inf_error.unwrap_or(0.0);
+            let reach = transient.remaining.unwrap_or(0.0) + transient.v_inf_error.unwrap_or(0.0);
             let steady = match indicators::fixed_point(&mut engine, seed) {
                 Ok((v, d, iterations, correction)) if (v - seed).abs() <= reach => {
                     indicators::steady_state_at(
@@ -632,8 +632,8 @@ fn simulate_timed<E: PeriodEngine>(
         error.velocity_per_power = error.v_inf.map(|dv| dv / p.apparent_power);
     }
     let span = startup_periods.unwrap_or(transient.periods());
-    let stiction_fraction_transient = (wanted.stiction && span > 0)
-        .then(|| transient.stick_time(span) / (span as f64 * period));
+    let stiction_fraction_transient =
+        (wanted.stiction && span > 0).then(|| transient.stick_time(span) / (span as f64 * period));
     if error.stiction_fraction.is_some() {
         // Every start or end of a stick phase in the start-up may be off by
         // the engine's event-time uncertainty; the sum is rounded per period.
@@ -649,18 +649,10 @@ fn simulate_timed<E: PeriodEngine>(
         difference: transient
             .converged
             .then(|| transient.v_inf() - indicators.v_inf),
-        tolerance: error
-            .v_inf
-            .zip(transient.v_inf_error)
-            .map(|(a, b)| a + b),
+        tolerance: error.v_inf.zip(transient.v_inf_error).map(|(a, b)| a + b),
         periods: transient.periods(),
     });
-    let event_log = event_log.map(|l| {
-        l.events
-            .into_iter()
-            .filter(|e| e.period <= span)
-            .collect()
-    });
+    let event_log = event_log.map(|l| l.events.into_iter().filter(|e| e.period <= span).collect());
     let simulation_time = clock.elapsed();
     Ok(Outcome::Steady(Box::new(RunReport {
         period,
@@ -696,7 +688,11 @@ fn unsettled<E: PeriodEngine>(
 ) -> Outcome {
     let last_v_p = transient.mean_velocities.last().copied();
     let u = transient.final_velocity;
-    let beyond = |w: f64| rest_fixed_point.filter(|(v, _)| (v - u) * w >= 0.0).map(|(_, m)| m);
+    let beyond = |w: f64| {
+        rest_fixed_point
+            .filter(|(v, _)| (v - u) * w >= 0.0)
+            .map(|(_, m)| m)
+    };
     let v_inf_bounds = if u > 0.0 {
         (last_v_p, beyond(1.0))
     } else if u < 0.0 {

@@ -43,7 +43,11 @@ fn issue15_neutral_map_gives_the_motion_from_rest() {
             Outcome::Steady(r) => {
                 // The motion from rest, within its error estimate.
                 let e = r.error.v_inf.expect("an estimate");
-                assert!(r.indicators.v_inf.abs() <= limit + e, "{name}: {}", r.indicators.v_inf);
+                assert!(
+                    r.indicators.v_inf.abs() <= limit + e,
+                    "{name}: {}",
+                    r.indicators.v_inf
+                );
                 assert!(e < 1e-6 * 87.39, "{name}: estimate {e}");
                 let check = r.steady_state_check.expect("verify_steady_state is on");
                 assert_ne!(check.agrees(), Some(false), "{name}");
@@ -78,7 +82,10 @@ fn issue15_barely_begun_start_up_is_not_converged() {
     assert!(lo == Some(last) || hi == Some(last), "{:?}", u.v_inf_bounds);
     assert!(matches!(
         outcome.into_report(),
-        Err(SimulationError::NotConverged { periods: 110_008, .. })
+        Err(SimulationError::NotConverged {
+            periods: 110_008,
+            ..
+        })
     ));
 }
 
@@ -172,24 +179,26 @@ fn the_fixed_point_used_is_the_one_the_motion_from_rest_reaches() {
         periods: 0,
     };
     let (v, ..) = indicators::fixed_point(&mut engine(), 0.0).unwrap();
-    assert!((v / a - 2.5).abs() < 1e-12, "the search alone lands on {}", v / a);
+    assert!(
+        (v / a - 2.5).abs() < 1e-12,
+        "the search alone lands on {}",
+        v / a
+    );
     let mut only_v = scene.clone();
     only_v.outputs.indicators = vec![Indicator::VInf, Indicator::StartupTime];
     for verify in [false, true] {
         only_v.run.verify_steady_state = verify;
         let r = simulation::run_with(engine(), &only_v, &motor).unwrap();
         // v_p = boundary velocity in this map: v_inf = a.
-        assert!((r.indicators.v_inf / a - 1.0).abs() < 1e-9, "{}", r.indicators.v_inf / a);
+        assert!(
+            (r.indicators.v_inf / a - 1.0).abs() < 1e-9,
+            "{}",
+            r.indicators.v_inf / a
+        );
     }
 }
 
-fn motor_params(
-    mass: f64,
-    force: f64,
-    mu_0: f64,
-    mu_d: f64,
-    load: f64,
-) -> MotorParams {
+fn motor_params(mass: f64, force: f64, mu_0: f64, mu_d: f64, load: f64) -> MotorParams {
     MotorParams {
         slider_mass: mass,
         contact_force: force,
@@ -204,7 +213,9 @@ fn motor_params(
 /// stall (within 2 % of `a_d`), and ordinary ones.
 fn scene() -> impl Strategy<Value = Scene> {
     let signal = (1usize..=6, any::<bool>(), -2.0f64..2.0, -8.0f64..-4.0).prop_map(
-        |(n, sigma, kappa, stroke)| SignalSpec::fourier(10f64.powf(stroke), 10f64.powf(kappa), n, sigma),
+        |(n, sigma, kappa, stroke)| {
+            SignalSpec::fourier(10f64.powf(stroke), 10f64.powf(kappa), n, sigma)
+        },
     );
     let friction = prop_oneof![
         (0.02f64..1.0).prop_map(|mu| (mu, 0.0)),
@@ -212,7 +223,13 @@ fn scene() -> impl Strategy<Value = Scene> {
         (1e-6f64..1e-3, 0.0f64..1.0).prop_map(|(mu, r)| (mu, mu * r)),
         (0.02f64..1.0, 0.0f64..1.0).prop_map(|(mu, r)| (mu, mu * r)),
     ];
-    (signal, friction, -4.0f64..0.0, -3.0f64..3.0, prop_oneof![Just(0.0), -0.02f64..0.02, 0.98f64..1.02, -1.02f64..-0.98])
+    (
+        signal,
+        friction,
+        -4.0f64..0.0,
+        -3.0f64..3.0,
+        prop_oneof![Just(0.0), -0.02f64..0.02, 0.98f64..1.02, -1.02f64..-0.98],
+    )
         .prop_map(|(signal, (mu_0, mu_d), mass, force, load)| {
             let (mass, force) = (10f64.powf(mass), 10f64.powf(force));
             let a_d = mu_d * force / mass;

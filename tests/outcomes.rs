@@ -66,7 +66,10 @@ fn a_run_away_is_a_result() {
         assert!(v[name].is_null(), "{name} of a run-away");
     }
     let text = run_text(&scene);
-    assert!(text.contains("run-away") && text.contains("keeps accelerating"), "{text}");
+    assert!(
+        text.contains("run-away") && text.contains("keeps accelerating"),
+        "{text}"
+    );
 }
 
 /// A rod acceleration far inside the stick band (kappa = 1e-4, as in
@@ -104,7 +107,10 @@ fn a_start_up_that_does_not_converge_is_a_result() {
     assert!(v["v_inf"].is_null());
     let bounds = v["v_inf_bounds"].as_array().unwrap();
     assert_eq!(bounds.len(), 2);
-    assert!(bounds.iter().any(|b| b.as_f64() == v["last_v_p"].as_f64()), "{v}");
+    assert!(
+        bounds.iter().any(|b| b.as_f64() == v["last_v_p"].as_f64()),
+        "{v}"
+    );
     assert!(run_text(&scene).contains("not converged"));
 }
 
@@ -113,15 +119,28 @@ fn a_start_up_that_does_not_converge_is_a_result() {
 #[test]
 fn json_is_traceable() {
     let d = dir("trace");
-    let scene = write(&d, "log.toml", "[outputs]\nevents = true\nindicators = [\"v_inf\"]\n");
+    let scene = write(
+        &d,
+        "log.toml",
+        "[outputs]\nevents = true\nindicators = [\"v_inf\"]\n",
+    );
     let v = run_json(&scene);
     assert_eq!(v["stickslip_version"], env!("CARGO_PKG_VERSION"));
     assert_eq!(v["scene_hash"].as_str().unwrap().len(), 16);
     // The resolved scene reads back to the same scene (same fingerprint).
     let scene_toml = toml::to_string(&v["scene"]).unwrap();
     let again = stickslip::Scene::from_toml_str(&scene_toml, "<json>").unwrap();
-    assert_eq!(stickslip::provenance::scene_hash(&again), v["scene_hash"].as_str().unwrap());
-    let kinds = ["stick_to_slip", "slip_to_stick", "reversal", "grazing", "jump"];
+    assert_eq!(
+        stickslip::provenance::scene_hash(&again),
+        v["scene_hash"].as_str().unwrap()
+    );
+    let kinds = [
+        "stick_to_slip",
+        "slip_to_stick",
+        "reversal",
+        "grazing",
+        "jump",
+    ];
     let log = v["event_log"].as_array().unwrap();
     assert!(!log.is_empty());
     for e in log {
@@ -132,7 +151,10 @@ fn json_is_traceable() {
         v["setup_time_s"].as_f64().unwrap(),
         v["simulation_time_s"].as_f64().unwrap(),
     );
-    assert!(setup > 0.0 && sim > 0.0 && wall >= setup + sim, "{wall} {setup} {sim}");
+    assert!(
+        setup > 0.0 && sim > 0.0 && wall >= setup + sim,
+        "{wall} {setup} {sim}"
+    );
 }
 
 /// `run.verify_steady_state = true` adds the cross-check and changes no
@@ -144,7 +166,11 @@ fn verification_changes_no_reported_value() {
     let base = "[signal]\nkind = \"fourier\"\nstroke = 25e-6\nkappa = 1.0\nharmonics = 3\nsigma = false\n\
                 [outputs]\nevents = true\n";
     let plain = run_json(&write(&d, "plain.toml", base));
-    let checked = run_json(&write(&d, "checked.toml", &format!("{base}[run]\nverify_steady_state = true\n")));
+    let checked = run_json(&write(
+        &d,
+        "checked.toml",
+        &format!("{base}[run]\nverify_steady_state = true\n"),
+    ));
     assert_eq!(checked["steady_state_check"]["agrees"], true);
     assert!(checked["v_inf_transient"].is_f64());
     let strip = |v: &Value| {
@@ -189,10 +215,11 @@ fn check_value(text: &str, name: &str) -> (f64, String) {
         .unwrap_or_else(|| panic!("no {name} in check:\n{text}"));
     let rest = header[name.len() + 2..].split(", order").next().unwrap();
     let unit = rest.strip_suffix(')').unwrap().to_owned();
-    let event = lines
-        .find(|l| l.trim_start().starts_with("event"))
-        .unwrap();
-    (event.split_whitespace().nth(1).unwrap().parse().unwrap(), unit)
+    let event = lines.find(|l| l.trim_start().starts_with("event")).unwrap();
+    (
+        event.split_whitespace().nth(1).unwrap().parse().unwrap(),
+        unit,
+    )
 }
 
 /// One scene (the paper's motor and actuator, n = 4 with sigma at
@@ -241,9 +268,14 @@ fn one_definition_per_indicator() {
     for name in names {
         let from_run = v[name].as_f64().unwrap_or_else(|| panic!("{name} in run"));
         let (from_check, unit) = check_value(&check, name);
-        let from_sweep: f64 = row[name].parse().unwrap_or_else(|_| panic!("{name} in sweep"));
+        let from_sweep: f64 = row[name]
+            .parse()
+            .unwrap_or_else(|_| panic!("{name} in sweep"));
         let scale = from_run.abs().max(1e-300);
-        assert!((from_check - from_run).abs() <= 1e-15 * scale, "{name}: check {from_check} run {from_run}");
+        assert!(
+            (from_check - from_run).abs() <= 1e-15 * scale,
+            "{name}: check {from_check} run {from_run}"
+        );
         assert_eq!(from_sweep, from_run, "{name}: sweep");
         if name == "friction_energy" {
             assert_eq!(unit, "J (per period)");
