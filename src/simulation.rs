@@ -33,9 +33,10 @@
 //!
 //! The fast path searches `P(v) = v` from rest ([`indicators::fixed_point`])
 //! and uses the fixed point only when it is *established*: the map
-//! contracts there measurably (`1 - P' > 0`, and `P(v) - v` is
-//! indistinguishable from 0 within rounding over at most `1e-6 max |v_R|`,
-//! see [`established_bound`]). A map that is neutral
+//! contracts there (`1 - P' > 0`) and the engine's bound on the fixed
+//! point, which contains the range where `P(v) - v` is indistinguishable
+//! from 0 within rounding, is at most `1e-3 max |v_R|` (see
+//! [`established_bound`]). A map that is neutral
 //! within rounding (`P(v) - v` indistinguishable from 0 over a range, as
 //! with `mu_dynamic = 0`, where every velocity of the slip range passes for
 //! a fixed point) or nearly neutral (`P'` within rounding of 1) is not
@@ -468,20 +469,19 @@ fn engine_bound(signal: &Signal, steady: &SteadyState) -> Option<f64> {
     (contraction > 0.0).then(|| (u + rounding_v + steady.residual) / contraction + u + rounding_v)
 }
 
-/// Widest range of velocities, relative to `max |v_R|`, over which the map
-/// may be neutral within rounding at an established fixed point: the range
-/// where `|P(v) - v|` stays below the rounding of a period,
-/// `rounding / (1 - P')`. Beyond it the map's zero does not say
+/// Largest [`engine_bound`], relative to `max |v_R|`, for which a fixed
+/// point counts as established. The bound contains the range over which
+/// the map is neutral within rounding, `rounding / (1 - P')`: where `P(v) - v`
+/// cannot be told from 0 over a wider range, the map's zero does not say
 /// where the motion from rest goes.
-const ESTABLISHED: f64 = 1e-6;
+const ESTABLISHED: f64 = 1e-3;
 
 /// The engine's bound on a fixed point from the search, if the fixed point
-/// is established: the map contracts there (`P' < 1`), and the range where
-/// it is neutral within rounding is at most `1e-6 max |v_R|` wide.
+/// is established: the map contracts there (`P' < 1`), the orbit has no
+/// grazing, and the bound (neutral range included) is at most
+/// `1e-3 max |v_R|`.
 pub fn established_bound(signal: &Signal, steady: &SteadyState) -> Option<f64> {
-    let bound = engine_bound(signal, steady)?;
-    let neutral_range = rounding_velocity(signal, steady) / (1.0 - steady.map_derivative);
-    (neutral_range <= ESTABLISHED * signal.velocity_scale()).then_some(bound)
+    engine_bound(signal, steady).filter(|b| *b <= ESTABLISHED * signal.velocity_scale())
 }
 
 /// True if the orbit from rest, up to period `periods`, went past the fixed

@@ -72,6 +72,16 @@ fn a_run_away_is_a_result() {
     );
 }
 
+/// The scene that was once listed as bad input (a load of -200 m/s^2
+/// against a_d = 112 m/s^2): a run-away backwards is a result, exit 0.
+#[test]
+fn the_run_away_load_scene_is_a_result() {
+    let v = run_json(Path::new("tests/data/runaway_load.toml"));
+    assert_eq!(v["regime"], "run-away");
+    assert_eq!(v["direction"], "backward");
+    assert!(v["final_velocity"].as_f64().unwrap() < 0.0);
+}
+
 /// A rod acceleration far inside the stick band (kappa = 1e-4, as in
 /// tests/engine.rs): the slider follows the rod, stuck, and its v_inf is 0
 /// within its error estimate (it follows a periodic rod).
