@@ -26,6 +26,7 @@ use crate::engine::fixed_step::{FixedStepEngine, FixedStepOptions};
 use crate::engine::{EventCounts, PeriodEngine};
 use crate::error::{Error, ParamError};
 use crate::motor::Motor;
+use crate::report;
 use crate::scene::{Indicator, Scene};
 use crate::simulation::{self, RunReport};
 use std::fmt::Write as _;
@@ -149,8 +150,12 @@ fn timed<E: PeriodEngine>(
 ) -> Result<(RunReport, Duration), Error> {
     let clock = Instant::now();
     let engine = make();
-    let report = simulation::run_with(engine, scene, motor)?;
-    Ok((report, clock.elapsed()))
+    let setup = clock.elapsed();
+    let mut report = simulation::run_with(engine, scene, motor)?;
+    report.setup_time = setup;
+    report.wall_time = clock.elapsed();
+    let wall_time = report.wall_time;
+    Ok((report, wall_time))
 }
 
 /// Runs `scene` with the event engine and with the fixed-step reference at
@@ -197,51 +202,28 @@ pub fn check(scene: &Scene, steps: &[u32]) -> Result<CheckReport, Error> {
     })
 }
 
-/// `(name, unit, value, error estimate)` of every requested indicator.
+/// `(name, unit, value, error estimate)` of every requested indicator,
+/// with the definitions and units of `stickslip run`
+/// ([`RunReport::indicator`], [`report::unit`]); `stiction_fraction` is
+/// followed by `stiction_fraction_steady`, the steady period's.
 fn indicator_values(r: &RunReport) -> Vec<(&'static str, &'static str, f64, Option<f64>)> {
-    let ind = &r.indicators;
     let mut out = Vec::new();
     for indicator in &r.requested {
-        match indicator {
-            Indicator::VInf => out.push(("v_inf", "m/s", ind.v_inf, r.error.v_inf)),
-            Indicator::StartupTime => {
-                if let Some(t) = r.startup_time() {
-                    out.push(("startup_time", "s", t, r.error.startup_time));
-                }
-            }
-            Indicator::Smoothness => {
-                out.push(("smoothness", "1", ind.smoothness, r.error.smoothness));
-            }
-            Indicator::Durability => {
-                out.push(("durability", "1/N", ind.durability, r.error.durability));
-            }
-            Indicator::FrictionEnergy => out.push((
-                "friction_energy",
-                "J",
-                ind.friction_energy,
-                r.error.friction_energy,
-            )),
-            Indicator::StictionFraction => {
-                out.push((
-                    "stiction_fraction",
-                    "1",
-                    ind.stiction_fraction,
-                    r.error.stiction_fraction,
-                ));
-                if let Some(f) = r.stiction_fraction_transient {
-                    out.push(("stiction_fraction_startup", "1", f, None));
-                }
-            }
-            Indicator::VelocityPerPower => {
-                if let Some(v) = r.velocity_per_power() {
-                    out.push((
-                        "velocity_per_power",
-                        "m/(s VA)",
-                        v,
-                        r.error.velocity_per_power,
-                    ));
-                }
-            }
+        if let Some(value) = r.indicator(*indicator) {
+            out.push((
+                indicator.name(),
+                report::unit(*indicator),
+                value,
+                r.indicator_error(*indicator),
+            ));
+        }
+        if *indicator == Indicator::StictionFraction {
+            out.push((
+                "stiction_fraction_steady",
+                "1",
+                r.indicators.stiction_fraction,
+                None,
+            ));
         }
     }
     out

@@ -138,6 +138,19 @@ pub enum SimulationError {
         /// Periods simulated.
         periods: u64,
     },
+    /// The start-up from rest did not establish its limit within
+    /// `run.max_periods` (for callers that need a steady state; `stickslip
+    /// run` reports it as a result).
+    #[error(
+        "no steady state established: the start-up from rest did not converge within \
+         {periods} periods (run.max_periods); last mean velocity {last_v_p:e} m/s"
+    )]
+    NotConverged {
+        /// Periods simulated.
+        periods: u64,
+        /// Mean velocity of the last simulated period (m/s).
+        last_v_p: f64,
+    },
     /// More events in one period than the engine allows: the motion
     /// chatters (Zeno behaviour) at the given place.
     #[error(

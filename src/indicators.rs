@@ -29,7 +29,7 @@
 //! **Start-up** `p_0.99` is the first period with `v_p >= 0.99 v_inf`
 //! (for a slider that moves backwards, `v_p <= 0.99 v_inf`).
 
-use crate::engine::{EventCounts, Mode, PeriodEngine, PeriodStart, Segment};
+use crate::engine::{Direction, EventCounts, Mode, PeriodEngine, PeriodStart, Segment};
 use crate::error::SimulationError;
 use crate::motor::Motor;
 use crate::observer::{Observer, PeriodEnd};
@@ -209,20 +209,33 @@ pub struct Transient {
     pub final_velocity: f64,
     /// Mode at the end of the last simulated period.
     pub final_mode: Mode,
-    /// True if the period-to-period change died out before the limit.
+    /// True if the motion's limit was established: the boundary velocity
+    /// repeated exactly, or the measured contraction bounds the remaining
+    /// distance below the tolerance.
     pub converged: bool,
-    /// Aitken's extrapolation of the mean velocities to `p -> inf`, when
-    /// the transient stopped on it.
-    pub extrapolated_v_inf: Option<f64>,
-    /// Time in stick over the whole transient (s), if asked.
-    pub stick_time: f64,
+    /// Bound on the distance from the last boundary velocity to its limit
+    /// (m/s), when converged: `|c| rho / (1 - rho)` with the last change `c`
+    /// and the largest of the last measured contraction ratios `rho`; 0
+    /// when the boundary state repeated exactly.
+    pub remaining: Option<f64>,
+    /// Estimated error of [`Transient::v_inf`] (m/s), when converged: the
+    /// distance of the last period's start velocity to the limit (the
+    /// remaining distance plus the last change) and the tolerance of the
+    /// test; a mean velocity moves no more than the boundary velocity it
+    /// starts from (two sliders never overtake each other).
+    pub v_inf_error: Option<f64>,
     /// Time in stick in every period (s), if asked.
     pub stick_times: Vec<f64>,
-    /// Events over the whole transient.
-    pub events: EventCounts,
+    /// Events in every period.
+    pub period_events: Vec<EventCounts>,
     /// Slider position at the end of the transient, `sum x_p`, summed with
     /// compensation so that it does not drift over long runs (m).
     pub displacement: f64,
+    /// Slider velocity at the end of every simulated period (m/s).
+    pub boundary_velocities: Vec<f64>,
+    /// Set when the slider ran away: it slid a whole period without any
+    /// event outside the rod's velocity range, moving further away.
+    pub run_away: Option<Direction>,
 }
 
 /// Neumaier's compensated sum: the rounding error of every addition is
@@ -259,31 +272,37 @@ impl Transient {
         self.mean_velocities.len() as u64
     }
 
-    /// The transient's estimate of `v_inf`: Aitken's extrapolation when the
-    /// transient stopped on it, else `v_p` of the last simulated period.
+    /// The transient's estimate of `v_inf`: `v_p` of the last simulated
+    /// period.
     pub fn v_inf(&self) -> f64 {
-        self.extrapolated_v_inf
-            .unwrap_or_else(|| self.mean_velocities.last().copied().unwrap_or(0.0))
+        self.mean_velocities.last().copied().unwrap_or(0.0)
     }
 
     /// `p_0.99` for a given `v_inf`: the first period with
-    /// `v_p >= 0.99 v_inf` (`<=` when `v_inf < 0`); `None` if `v_inf = 0`
-    /// or it was not reached.
+    /// `v_p / v_inf >= 0.99` (the same sign as `v_inf`); `None` if
+    /// `v_inf = 0` or it was not reached.
     pub fn startup_periods(&self, v_inf: f64) -> Option<u64> {
         if v_inf == 0.0 {
             return None;
         }
-        let target = 0.99 * v_inf;
         self.mean_velocities
             .iter()
-            .position(|v| {
-                if v_inf > 0.0 {
-                    *v >= target
-                } else {
-                    *v <= target
-                }
-            })
+            .position(|v| reached_startup(*v, v_inf))
             .map(|i| i as u64 + 1)
+    }
+
+    /// Time in stick over periods `1..=periods` (s), if stick times were
+    /// asked for.
+    pub fn stick_time(&self, periods: u64) -> f64 {
+        self.stick_times.iter().take(periods as usize).sum()
+    }
+
+    /// Events over periods `1..=periods`.
+    pub fn events(&self, periods: u64) -> EventCounts {
+        self.period_events
+            .iter()
+            .take(periods as usize)
+            .fold(EventCounts::default(), |a, e| a.merged(e))
     }
 }
 
@@ -296,7 +315,7 @@ pub struct AnalysisOptions {
     /// relative to `max |v_R|`, is below this.
     pub transient_tolerance: f64,
     /// When set to the steady-state `v_inf`, the transient stops at the
-    /// first period with `v_p >= 0.99 v_inf` (`p_0.99`) instead of running
+    /// first period with `v_p / v_inf >= 0.99` (`p_0.99`) instead of running
     /// to convergence.
     pub stop_at_startup: Option<f64>,
 }
@@ -311,8 +330,26 @@ impl Default for AnalysisOptions {
     }
 }
 
+/// Contraction ratios kept for the convergence test: the remaining
+/// distance is bounded with the largest of them.
+const RATIOS: usize = 3;
+
 /// Simulates the start-up from rest with `observer` attached, until the
-/// boundary velocity has converged (or `max_periods`).
+/// boundary velocity has converged, the slider runs away, `p_0.99` is
+/// reached (with [`AnalysisOptions::stop_at_startup`]) or `max_periods`.
+///
+/// Convergence is claimed only on evidence about the limit, never on the
+/// size of a change alone (a motion that has barely begun changes little):
+/// * the boundary state (velocity and mode) repeated exactly, so the orbit
+///   is periodic from there on; or
+/// * the last three contraction ratios `rho_k = |c_k / c_(k-1)|` of
+///   the changes `c_k` of the boundary velocity are below 1 and bound the
+///   remaining distance, `|c| rho / (1 - rho) <= tol` with `rho` the
+///   largest of them.
+///
+/// (Aitken's extrapolation of the mean velocities is not used: they carry
+/// a second component decaying like `rho^2`, which leaves the extrapolated
+/// limit off by far more than the successive limits' agreement shows.)
 pub fn transient<E: PeriodEngine, O: Observer>(
     engine: &mut E,
     options: &AnalysisOptions,
@@ -336,13 +373,14 @@ pub fn transient<E: PeriodEngine, O: Observer>(
     };
     let mut mean_velocities: Vec<f64> = Vec::new();
     let mut last_change: Option<f64> = None;
-    let mut last_limit: Option<f64> = None;
-    let mut extrapolated = None;
-    let mut converged = false;
-    let mut stick_time = 0.0;
+    let mut ratios: Vec<f64> = Vec::with_capacity(RATIOS);
+    let mut remaining = None;
+    let mut v_inf_error = None;
     let mut stick_times = Vec::new();
+    let mut period_events = Vec::new();
     let mut displacement = CompensatedSum::default();
-    let mut events = EventCounts::default();
+    let mut boundary_velocities = Vec::new();
+    let mut run_away = None;
     let mut p = 0u64;
     while p < options.max_periods {
         p += 1;
@@ -350,12 +388,13 @@ pub fn transient<E: PeriodEngine, O: Observer>(
         let v_p = end.step / period;
         mean_velocities.push(v_p);
         displacement.add(end.step);
-        stick_time += stats.last.stick_time;
         if wanted.stiction {
             stick_times.push(stats.last.stick_time);
         }
-        events = events.merged(&stats.last.events);
+        period_events.push(stats.last.events);
+        boundary_velocities.push(end.velocity);
         let change = end.velocity - start.velocity;
+        let repeated = change == 0.0 && start.mode == Some(end.mode);
         start = PeriodStart {
             velocity: end.velocity,
             mode: Some(end.mode),
@@ -366,57 +405,55 @@ pub fn transient<E: PeriodEngine, O: Observer>(
         {
             break;
         }
-        if p >= 2 && change == 0.0 {
-            converged = true;
+        if repeated {
+            remaining = Some(0.0);
+            v_inf_error = Some(tol);
             break;
         }
         let ev = &stats.last.events;
-        runaway(&end, ev.total() - ev.jump, change, (lo_r, hi_r), p)?;
+        run_away = runaway(&end, ev.total() - ev.jump, change, (lo_r, hi_r));
+        if run_away.is_some() {
+            break;
+        }
         if let Some(before) = last_change {
-            // Geometric tail: remaining distance ~ |change| rho / (1 - rho).
-            let rho = (change / before).abs();
-            if rho < 1.0 {
-                let tail = change.abs() * rho / (1.0 - rho);
-                if tail <= tol && change.abs() <= tol {
-                    converged = true;
-                    break;
-                }
-                // Aitken's extrapolation of the mean velocities; stop once
-                // two successive limits agree and start-up is long past.
-                let n = mean_velocities.len();
-                if n >= 3 {
-                    let (a, b, c) = (mean_velocities[n - 3], mean_velocities[n - 2], v_p);
-                    let denominator = (c - b) - (b - a);
-                    if denominator != 0.0 {
-                        let limit = c - (c - b) * (c - b) / denominator;
-                        let settled = last_limit.is_some_and(|l| (l - limit).abs() <= tol);
-                        let past_startup = (limit - c).abs() <= 1e-6 * limit.abs();
-                        if settled && past_startup {
-                            extrapolated = Some(limit);
-                            converged = true;
-                            break;
-                        }
-                        last_limit = Some(limit);
-                    }
-                }
+            if ratios.len() == RATIOS {
+                ratios.remove(0);
             }
+            ratios.push((change / before).abs());
         }
         last_change = Some(change);
+        if ratios.len() < RATIOS {
+            continue;
+        }
+        let rho = ratios.iter().copied().fold(0.0, f64::max);
+        if rho.is_nan() || rho >= 1.0 {
+            continue;
+        }
+        let tail = change.abs() * rho / (1.0 - rho);
+        if tail <= tol {
+            remaining = Some(tail);
+            // v_p of this period started one change before the end.
+            v_inf_error = Some(tail + change.abs() + tol);
+            break;
+        }
     }
     Ok(Transient {
         mean_velocities,
         final_velocity: start.velocity,
         final_mode: start.mode.unwrap_or(Mode::Stick),
-        converged,
-        extrapolated_v_inf: extrapolated,
-        stick_time,
+        converged: remaining.is_some(),
+        remaining,
+        v_inf_error,
         stick_times,
-        events,
+        period_events,
         displacement: displacement.value(),
+        boundary_velocities,
+        run_away,
     })
 }
 
-/// `v_p >= 0.99 v_inf`, or `<=` for a slider moving backwards.
+/// `v_p / v_inf >= 0.99`: `v_p >= 0.99 v_inf` for a slider moving
+/// forwards, `v_p <= 0.99 v_inf` for one moving backwards.
 fn reached_startup(v_p: f64, v_inf: f64) -> bool {
     let target = 0.99 * v_inf;
     if v_inf > 0.0 {
@@ -429,34 +466,28 @@ fn reached_startup(v_p: f64, v_inf: f64) -> bool {
 /// A slider that slid a whole period in one direction without any event
 /// (rod jumps aside: the slider's velocity is outside the rod's range on
 /// both sides of one), ends outside the rod's velocity range and moved
-/// further away cannot
-/// come back: `v_rel` never reaches zero again and its acceleration is
-/// constant. This is a run-away (the extra acceleration `g_t` exceeds what
-/// sliding friction `a_d` can hold), reported instead of simulated forever.
+/// further away cannot come back: `v_rel` never reaches zero again and its
+/// acceleration is constant. This is a run-away (the extra acceleration
+/// `g_t` exceeds what sliding friction `a_d` can hold), returned as the
+/// direction it runs in.
 fn runaway(
     end: &PeriodEnd,
     events: u64,
     change: f64,
     (lo_r, hi_r): (f64, f64),
-    periods: u64,
-) -> Result<(), SimulationError> {
+) -> Option<Direction> {
     if events != 0 {
-        return Ok(());
+        return None;
     }
-    let direction = match end.mode {
-        Mode::Slip(crate::engine::Direction::Backward) if end.velocity > hi_r && change > 0.0 => {
-            "growing"
+    match end.mode {
+        Mode::Slip(Direction::Backward) if end.velocity > hi_r && change > 0.0 => {
+            Some(Direction::Forward)
         }
-        Mode::Slip(crate::engine::Direction::Forward) if end.velocity < lo_r && change < 0.0 => {
-            "falling"
+        Mode::Slip(Direction::Forward) if end.velocity < lo_r && change < 0.0 => {
+            Some(Direction::Backward)
         }
-        _ => return Ok(()),
-    };
-    Err(SimulationError::NoSteadyState {
-        direction,
-        velocity: end.velocity,
-        periods,
-    })
+        _ => None,
+    }
 }
 
 /// `P(v)` and `P'(v)`.
@@ -565,6 +596,26 @@ pub fn steady_state<E: PeriodEngine, O: Observer>(
     observer: &mut O,
 ) -> Result<SteadyState, SimulationError> {
     let (v_star, map_derivative, iterations, last_correction) = fixed_point(engine, guess)?;
+    steady_state_at(
+        engine,
+        v_star,
+        (Some(map_derivative), iterations, last_correction),
+        wanted,
+        observer,
+    )
+}
+
+/// The periodic orbit through the boundary velocity `v_star`, with one
+/// period observed by `observer`; `(P'(v_star), iterations, last
+/// correction)` come from the search that found it (or from the start-up
+/// that reached it).
+pub fn steady_state_at<E: PeriodEngine, O: Observer>(
+    engine: &mut E,
+    v_star: f64,
+    (map_derivative, iterations, last_correction): (Option<f64>, u32, f64),
+    wanted: StatsWanted,
+    observer: &mut O,
+) -> Result<SteadyState, SimulationError> {
     // One unobserved period gives the mode the orbit has at its period
     // boundary, so that the observed period reports the transition at
     // phase 0 like every other.
@@ -599,7 +650,7 @@ pub fn steady_state<E: PeriodEngine, O: Observer>(
     Ok(SteadyState {
         boundary_velocity: before.velocity,
         residual: (before.velocity - v_star).abs(),
-        map_derivative,
+        map_derivative: map_derivative.unwrap_or(before.map_derivative),
         v_inf: end.step / period,
         stats: stats.last,
         iterations,

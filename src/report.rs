@@ -1,17 +1,38 @@
-//! Turning a [`RunReport`] into text or JSON.
+//! Turning an [`Outcome`] into text or JSON.
 //!
 //! The text summary prints each value with as many significant digits as
 //! its error estimate supports (never more than 15), followed by the
 //! estimate, so every printed digit is meant. The JSON object uses the keys
 //! fixed in `docs/interface.md`; values that do not exist (an infinite
 //! smoothness when the slider velocity is constant, a start-up that was not
-//! reached) are `null`, never NaN.
+//! reached, every indicator of a slider that runs away) are `null`, never
+//! NaN. Every output carries `regime`, the program version and the resolved
+//! scene with its fingerprint ([`crate::provenance`]).
+//!
+//! Every indicator has one definition and one unit ([`RunReport::indicator`],
+//! [`unit()`]), the same in `run`, `check`, sweeps and figures.
 
-use crate::engine::EventCounts;
-use crate::scene::Indicator;
-use crate::simulation::RunReport;
+use crate::Scene;
+use crate::engine::{Direction, EventCounts};
+use crate::provenance;
+use crate::scene::{Indicator, SceneFile};
+use crate::simulation::{Outcome, RunReport, Unsettled};
 use serde_json::{Map, Value, json};
 use std::fmt::Write as _;
+use std::time::Duration;
+
+/// The SI unit of an indicator, as printed: `friction_energy` is energy
+/// per steady-state period.
+pub fn unit(indicator: Indicator) -> &'static str {
+    match indicator {
+        Indicator::VInf => "m/s",
+        Indicator::StartupTime => "s",
+        Indicator::Smoothness | Indicator::StictionFraction => "1",
+        Indicator::Durability => "1/N",
+        Indicator::FrictionEnergy => "J (per period)",
+        Indicator::VelocityPerPower => "m/(s VA)",
+    }
+}
 
 /// `value` rounded to the digits its absolute error `err` supports (15
 /// significant digits without an estimate), then `± err`; an error of 0
@@ -65,33 +86,99 @@ fn events_json(e: &EventCounts) -> Value {
     })
 }
 
-/// The run as one JSON object with the keys of `docs/interface.md`.
-pub fn to_json(r: &RunReport) -> Value {
+/// The keys every outcome carries first: `regime`, the provenance and the
+/// resolved scene.
+fn header(outcome: &Outcome, scene: &Scene) -> Map<String, Value> {
     let mut m = Map::new();
+    m.insert("regime".into(), json!(outcome.regime()));
+    m.insert("stickslip_version".into(), json!(provenance::VERSION));
+    m.insert("scene_hash".into(), json!(provenance::scene_hash(scene)));
+    m.insert(
+        "scene".into(),
+        serde_json::to_value(SceneFile::from(scene)).unwrap_or(Value::Null),
+    );
+    m
+}
+
+fn times_json(
+    m: &mut Map<String, Value>,
+    (setup, simulation, wall): (Duration, Duration, Duration),
+) {
+    m.insert("wall_time_s".into(), number(wall.as_secs_f64()));
+    m.insert("setup_time_s".into(), number(setup.as_secs_f64()));
+    m.insert("simulation_time_s".into(), number(simulation.as_secs_f64()));
+}
+
+/// The outcome of a run of `scene` as one JSON object with the keys of
+/// `docs/interface.md`.
+pub fn to_json(outcome: &Outcome, scene: &Scene) -> Value {
+    let mut m = header(outcome, scene);
+    match outcome {
+        Outcome::Steady(r) => steady_json(&mut m, r),
+        Outcome::RunAway { direction, state } => {
+            unsettled_json(&mut m, state);
+            m.insert("direction".into(), json!(direction_name(*direction)));
+        }
+        Outcome::NotConverged(state) => unsettled_json(&mut m, state),
+    }
+    times_json(&mut m, outcome.times());
+    Value::Object(m)
+}
+
+fn direction_name(d: Direction) -> &'static str {
+    match d {
+        Direction::Forward => "forward",
+        Direction::Backward => "backward",
+    }
+}
+
+fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled) {
+    let mut err = Map::new();
+    for indicator in &u.requested {
+        m.insert(indicator.name().into(), Value::Null);
+        err.insert(indicator.name().into(), Value::Null);
+    }
+    m.insert("last_v_p".into(), option_number(u.last_v_p));
+    m.insert("final_velocity".into(), number(u.final_velocity));
+    m.insert(
+        "v_inf_bounds".into(),
+        json!([
+            option_number(u.v_inf_bounds.0),
+            option_number(u.v_inf_bounds.1)
+        ]),
+    );
+    m.insert("period".into(), number(u.period));
+    m.insert("f0".into(), number(1.0 / u.period));
+    m.insert("f_max".into(), option_number(u.f_max));
+    m.insert("periods_simulated".into(), json!(u.periods_simulated));
+    m.insert("error_estimate".into(), Value::Object(err));
+    m.insert(
+        "work".into(),
+        json!({
+            "periods": u.work.periods,
+            "events": u.work.events.total(),
+            "evaluations": u.work.evaluations,
+            "root_iterations": u.work.root_iterations,
+        }),
+    );
+}
+
+fn steady_json(m: &mut Map<String, Value>, r: &RunReport) {
     let ind = &r.indicators;
     let mut err = Map::new();
     for indicator in &r.requested {
-        let (value, error) = match indicator {
-            Indicator::VInf => (number(ind.v_inf), r.error.v_inf),
+        match indicator {
             Indicator::StartupTime => {
                 m.insert(
                     "startup_periods".into(),
                     r.startup_periods.map_or(Value::Null, |p| json!(p)),
                 );
-                (option_number(r.startup_time()), r.error.startup_time)
             }
-            Indicator::Smoothness => (number(ind.smoothness), r.error.smoothness),
-            Indicator::Durability => (number(ind.durability), r.error.durability),
-            Indicator::FrictionEnergy => (number(ind.friction_energy), r.error.friction_energy),
             Indicator::StictionFraction => {
                 m.insert(
                     "stiction_fraction_steady".into(),
                     number(ind.stiction_fraction),
                 );
-                (
-                    option_number(r.stiction_fraction_transient),
-                    r.error.stiction_fraction,
-                )
             }
             Indicator::VelocityPerPower => {
                 if let Some(p) = &r.power {
@@ -99,20 +186,34 @@ pub fn to_json(r: &RunReport) -> Value {
                     m.insert("voltage_rms".into(), number(p.u_rms));
                     m.insert("current_rms".into(), number(p.i_rms));
                 }
-                (
-                    option_number(r.velocity_per_power()),
-                    r.error.velocity_per_power,
-                )
             }
-        };
-        m.insert(indicator.name().into(), value);
-        err.insert(indicator.name().into(), option_number(error));
+            _ => {}
+        }
+        m.insert(
+            indicator.name().into(),
+            option_number(r.indicator(*indicator)),
+        );
+        err.insert(
+            indicator.name().into(),
+            option_number(r.indicator_error(*indicator)),
+        );
     }
-    m.insert("regime".into(), json!(r.regime().name()));
-    if let Some(t) = r.transient.as_ref().filter(|t| t.converged) {
+    if let Some(check) = &r.steady_state_check {
         // The cross-check of run.verify_steady_state: the start-up's own
-        // limit beside the period map's.
-        m.insert("v_inf_transient".into(), number(t.v_inf()));
+        // limit beside the steady state's.
+        m.insert(
+            "v_inf_transient".into(),
+            option_number(check.v_inf_transient),
+        );
+        m.insert(
+            "steady_state_check".into(),
+            json!({
+                "agrees": check.agrees(),
+                "difference": option_number(check.difference),
+                "tolerance": option_number(check.tolerance),
+                "periods": check.periods,
+            }),
+        );
     }
     m.insert("period".into(), number(r.period));
     m.insert("f0".into(), number(1.0 / r.period));
@@ -126,7 +227,6 @@ pub fn to_json(r: &RunReport) -> Value {
         "events_per_steady_period".into(),
         events_json(&r.steady.stats.events),
     );
-    m.insert("wall_time_s".into(), number(r.wall_time.as_secs_f64()));
     m.insert("error_estimate".into(), Value::Object(err));
     m.insert(
         "work".into(),
@@ -146,7 +246,7 @@ pub fn to_json(r: &RunReport) -> Value {
                     "period": e.period,
                     "phase": e.phase,
                     "time": (e.period - 1) as f64 * r.period + e.phase,
-                    "kind": format!("{:?}", e.kind),
+                    "kind": e.kind.name(),
                 })
             })
             .collect();
@@ -168,7 +268,6 @@ pub fn to_json(r: &RunReport) -> Value {
             .collect();
         m.insert("trajectory".into(), Value::Array(rows));
     }
-    Value::Object(m)
 }
 
 /// An indicator with its estimate; without one (no bound holds, e.g. a
@@ -181,73 +280,135 @@ fn with_estimate(value: f64, err: Option<f64>) -> String {
     }
 }
 
-/// A readable summary.
-pub fn to_text(r: &RunReport) -> String {
-    let mut out = String::new();
-    let ind = &r.indicators;
-    let e = &r.error;
-    let line = |out: &mut String, name: &str, value: String, unit: &str| {
-        let _ = writeln!(out, "  {name:<22} {value} {unit}");
-    };
+fn signal_line(out: &mut String, period: f64, f_max: Option<f64>) {
     let _ = writeln!(
         out,
         "signal: T = {} s, f0 = {} Hz{}",
-        format_with_error(r.period, None),
-        format_with_error(1.0 / r.period, None),
-        r.f_max
+        format_with_error(period, None),
+        format_with_error(1.0 / period, None),
+        f_max
             .map(|f| format!(", f_max = {} Hz", format_with_error(f, None)))
             .unwrap_or_default()
     );
+}
+
+fn cost_line(
+    out: &mut String,
+    periods: u64,
+    events: u64,
+    roots: u64,
+    times: (Duration, Duration, Duration),
+) {
+    let (setup, simulation, wall) = times;
+    let _ = writeln!(
+        out,
+        "work: {periods} periods, {events} events, {roots} root iterations; wall time {:.3} ms \
+         (set-up {:.3} ms, simulation {:.3} ms)",
+        wall.as_secs_f64() * 1e3,
+        setup.as_secs_f64() * 1e3,
+        simulation.as_secs_f64() * 1e3,
+    );
+}
+
+/// A readable summary of the outcome.
+pub fn to_text(outcome: &Outcome) -> String {
+    match outcome {
+        Outcome::Steady(r) => steady_text(r),
+        Outcome::RunAway { direction, state } => {
+            let mut out = String::new();
+            signal_line(&mut out, state.period, state.f_max);
+            let _ = writeln!(
+                out,
+                "outcome: run-away ({}): no periodic steady state; after {} periods the slider \
+                 slides at {} m/s outside the rod's velocity range, without any event, and keeps \
+                 accelerating (motor.extra_acceleration exceeds what sliding friction can hold)",
+                direction_name(*direction),
+                state.periods_simulated,
+                format_with_error(state.final_velocity, None),
+            );
+            unsettled_text(&mut out, state, outcome.times());
+            out
+        }
+        Outcome::NotConverged(state) => {
+            let mut out = String::new();
+            signal_line(&mut out, state.period, state.f_max);
+            let _ = writeln!(
+                out,
+                "outcome: not converged: the start-up from rest did not establish its limit \
+                 within {} periods (run.max_periods); v_inf is not reported",
+                state.periods_simulated,
+            );
+            let bound =
+                |b: Option<f64>| b.map_or("unknown".to_owned(), |v| format_with_error(v, None));
+            let _ = writeln!(
+                out,
+                "  v_inf lies between {} and {} m/s",
+                bound(state.v_inf_bounds.0),
+                bound(state.v_inf_bounds.1)
+            );
+            unsettled_text(&mut out, state, outcome.times());
+            out
+        }
+    }
+}
+
+fn unsettled_text(out: &mut String, state: &Unsettled, times: (Duration, Duration, Duration)) {
+    if let Some(v) = state.last_v_p {
+        let _ = writeln!(
+            out,
+            "  last mean velocity v_p = {} m/s (period {})",
+            format_with_error(v, None),
+            state.periods_simulated
+        );
+    }
+    let _ = writeln!(out, "indicators: none (no steady state)");
+    cost_line(
+        out,
+        state.work.periods,
+        state.work.events.total(),
+        state.work.root_iterations,
+        times,
+    );
+}
+
+fn steady_text(r: &RunReport) -> String {
+    let mut out = String::new();
+    let ind = &r.indicators;
+    let line = |out: &mut String, name: &str, value: String, unit: &str| {
+        let _ = writeln!(out, "  {name:<22} {value} {unit}");
+    };
+    signal_line(&mut out, r.period, r.f_max);
     let _ = writeln!(out, "steady state: {}", r.regime().name());
     let _ = writeln!(out, "indicators (± estimated absolute error):");
+    let shown =
+        |i: Indicator| with_estimate(r.indicator(i).unwrap_or(f64::NAN), r.indicator_error(i));
     for indicator in &r.requested {
+        let name = indicator.name();
         match indicator {
-            Indicator::VInf => line(&mut out, "v_inf", with_estimate(ind.v_inf, e.v_inf), "m/s"),
             Indicator::StartupTime => match (r.startup_time(), r.startup_periods) {
-                (Some(t), Some(p)) => line(
+                (Some(_), Some(p)) => line(
                     &mut out,
-                    "startup_time",
+                    name,
                     format!(
                         "{} s = {p} period{}",
-                        with_estimate(t, e.startup_time),
+                        shown(*indicator),
                         if p == 1 { "" } else { "s" }
                     ),
                     "",
                 ),
-                _ => line(&mut out, "startup_time", "not reached".into(), ""),
+                _ => line(&mut out, name, "not reached".into(), ""),
             },
-            Indicator::Smoothness => line(
-                &mut out,
-                "smoothness",
-                with_estimate(ind.smoothness, e.smoothness),
-                "",
-            ),
-            Indicator::Durability => line(
-                &mut out,
-                "durability",
-                with_estimate(ind.durability, e.durability),
-                "1/N",
-            ),
-            Indicator::FrictionEnergy => line(
-                &mut out,
-                "friction_energy",
-                with_estimate(ind.friction_energy, e.friction_energy),
-                "J/period",
-            ),
             Indicator::StictionFraction => {
                 line(
                     &mut out,
-                    "stiction_fraction",
-                    with_estimate(
-                        r.stiction_fraction_transient.unwrap_or(f64::NAN),
-                        e.stiction_fraction,
-                    ),
-                    "(of the simulated start-up)",
+                    name,
+                    shown(*indicator),
+                    &format!("(of the start-up, periods 1..{})", r.startup_span()),
                 );
                 line(
                     &mut out,
                     "  in steady state",
-                    with_estimate(ind.stiction_fraction, e.stiction_fraction),
+                    format_with_error(ind.stiction_fraction, None),
                     "(of a period)",
                 );
             }
@@ -260,14 +421,39 @@ pub fn to_text(r: &RunReport) -> String {
                         "VA",
                     );
                 }
-                line(
-                    &mut out,
-                    "velocity_per_power",
-                    with_estimate(
-                        r.velocity_per_power().unwrap_or(f64::NAN),
-                        e.velocity_per_power,
-                    ),
-                    "m/(s VA)",
+                line(&mut out, name, shown(*indicator), unit(*indicator));
+            }
+            Indicator::Smoothness => line(&mut out, name, shown(*indicator), ""),
+            _ => line(&mut out, name, shown(*indicator), unit(*indicator)),
+        }
+    }
+    if let Some(check) = &r.steady_state_check {
+        let tr = check
+            .v_inf_transient
+            .map_or("not established".to_owned(), |v| format_with_error(v, None));
+        let _ = writeln!(
+            out,
+            "cross-check: the start-up from rest ({} periods) gives v_inf = {tr} m/s",
+            check.periods
+        );
+        match (check.agrees(), check.difference, check.tolerance) {
+            (Some(true), Some(d), Some(t)) => {
+                let _ = writeln!(
+                    out,
+                    "  agrees with the steady state: difference {d:.1e} m/s within the estimates {t:.1e} m/s"
+                );
+            }
+            (Some(false), Some(d), Some(t)) => {
+                let _ = writeln!(
+                    out,
+                    "  WARNING: differs from the steady state by {d:.1e} m/s, beyond the error \
+                     estimates {t:.1e} m/s"
+                );
+            }
+            _ => {
+                let _ = writeln!(
+                    out,
+                    "  WARNING: agreement cannot be judged (no limit of the start-up or no error estimate)"
                 );
             }
         }
@@ -276,20 +462,19 @@ pub fn to_text(r: &RunReport) -> String {
     let _ = writeln!(
         out,
         "events over {} periods from rest: {} stick->slip, {} slip->stick, {} reversal, {} grazing, {} jump",
-        r.transient.as_ref().map_or(0, |t| t.periods()),
+        r.startup_span(),
         ev.stick_to_slip,
         ev.slip_to_stick,
         ev.reversal,
         ev.grazing,
         ev.jump
     );
-    let _ = writeln!(
-        out,
-        "work: {} periods, {} events, {} root iterations; wall time {:.3} ms",
+    cost_line(
+        &mut out,
         r.work.periods,
         r.work.events.total(),
         r.work.root_iterations,
-        r.wall_time.as_secs_f64() * 1e3
+        (r.setup_time, r.simulation_time, r.wall_time),
     );
     out
 }

@@ -57,6 +57,12 @@ fn json_has_the_interface_keys() {
         "events",
         "wall_time_s",
         "error_estimate",
+        "regime",
+        "stickslip_version",
+        "scene",
+        "scene_hash",
+        "setup_time_s",
+        "simulation_time_s",
     ] {
         assert!(v.get(key).is_some(), "missing key {key}");
     }

@@ -101,8 +101,12 @@ proptest! {
         let signal = Signal::build(&scene.signal, &motor).unwrap();
         let r = match run(&scene, &signal) {
             Ok(r) => r,
-            Err(Error::Simulation(SimulationError::NoSteadyState { .. })) => {
-                // Only a load beyond sliding friction may run away.
+            Err(Error::Simulation(
+                SimulationError::NoSteadyState { .. } | SimulationError::NotConverged { .. },
+            )) => {
+                // Only a load beyond sliding friction may run away, or
+                // accelerate too slowly to leave the rod's velocity range
+                // within max_periods.
                 prop_assert!(scene.motor.extra_acceleration.abs() > motor.a_d());
                 return Ok(());
             }

@@ -36,14 +36,14 @@ pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failur
     }
     let mut scene = load(args.scene.as_deref())?;
     args.options.apply(&mut scene, streams);
-    let result = simulation::run(&scene).map_err(|e| e.to_string())?;
+    let outcome = simulation::simulate(&scene).map_err(|e| e.to_string())?;
     let text = if args.json {
-        let mut text =
-            serde_json::to_string_pretty(&report::to_json(&result)).map_err(|e| e.to_string())?;
+        let mut text = serde_json::to_string_pretty(&report::to_json(&outcome, &scene))
+            .map_err(|e| e.to_string())?;
         text.push('\n');
         text
     } else {
-        report::to_text(&result)
+        report::to_text(&outcome)
     };
     match args.output {
         Some(path) => crate::output::write_atomically(&path, text.as_bytes())

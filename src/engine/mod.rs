@@ -100,6 +100,21 @@ pub enum EventKind {
     },
 }
 
+impl EventKind {
+    /// Stable name in reports and logs (docs/interface.md): `stick_to_slip`,
+    /// `slip_to_stick`, `reversal`, `grazing`, `jump`; the same names as the
+    /// keys of the event counts.
+    pub fn name(&self) -> &'static str {
+        match self {
+            EventKind::StickToSlip { .. } => "stick_to_slip",
+            EventKind::SlipToStick => "slip_to_stick",
+            EventKind::Reversal { .. } => "reversal",
+            EventKind::Grazing { .. } => "grazing",
+            EventKind::Jump { .. } => "jump",
+        }
+    }
+}
+
 /// An event at time `(period - 1) T + phase`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Event {
