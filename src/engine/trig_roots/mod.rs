@@ -53,33 +53,22 @@
 
 use std::f64::consts::TAU;
 
-use nalgebra::{Complex, DMatrix, DVector, Schur};
+use nalgebra::Complex;
+
+mod eigen;
+mod isolate;
 
 /// Machine epsilon.
 const EPS: f64 = f64::EPSILON;
 /// Safety factor of the rounding level `η` over the measured evaluation error.
 const NOISE_FACTOR: f64 = 16.0;
-/// Multiple of the simple-root displacement `η/|p'|` accepted off the circle
-/// (measured displacements stay below 100).
-const SIMPLE_ACCEPT: f64 = 1.0e4;
-/// Multiple of the double-root displacement `sqrt(2η/|p''|)` accepted off the
-/// circle (measured displacements stay below 1).
-const DOUBLE_ACCEPT: f64 = 1.0e2;
-/// No candidate farther than this from the circle (a root of multiplicity `m`
-/// spreads over `~ε^{1/m}`: this admits `m ≤ 8`).
+/// Largest distance of a merged root from its group (a root of multiplicity
+/// `m` spreads over `~ε^{1/m}`: this admits `m ≤ 8`).
 const MAX_ACCEPT: f64 = 1.0e-2;
 /// Newton iterations (linear convergence at double roots needs more than a few).
 const NEWTON_ITERS: usize = 30;
 /// Largest single Newton step on `p`, radians.
 const NEWTON_MAX_STEP: f64 = 1.0e-3;
-/// Shifted-QR sweeps allowed: `QR_SWEEPS_PER_EIGENVALUE · N + QR_SWEEPS_EXTRA`
-/// before the iteration is declared stalled. Measured needs: up to `2.9 N`
-/// for random companions (`N ≤ 128`), plus about 20 per multiple root.
-const QR_SWEEPS_PER_EIGENVALUE: usize = 5;
-/// See [`QR_SWEEPS_PER_EIGENVALUE`].
-const QR_SWEEPS_EXTRA: usize = 100;
-/// Reruns on unitary similarities after a stall.
-const QR_RETRIES: usize = 6;
 
 /// A real trigonometric polynomial
 /// `p(θ) = c0 + Σ_{k=1}^{n} (a[k-1] cos kθ + b[k-1] sin kθ)`.
@@ -291,27 +280,58 @@ impl TrigPoly {
     ///
     /// Cost: `O(n^3)`, the complex Schur form of a `2n × 2n` matrix.
     pub fn roots(&self) -> Vec<f64> {
+        let Some(p) = self.normalized() else {
+            return Vec::new();
+        };
+        let Some(n) = p.significant_degree() else {
+            return Vec::new();
+        };
+        let eta = p.eval_error_bound();
+        let found = isolate::candidates(&p, n, eta);
+        p.merge(found.into_iter().map(wrap).collect(), eta)
+    }
+
+    /// The previous root finder, kept as an independent test oracle for
+    /// [`TrigPoly::roots`]: eigenvalues of the `2n × 2n` companion matrix of
+    /// `z^n p(θ)` (nalgebra's complex Schur form), then the same polish and
+    /// merge. Same contract except that it proves nothing about missed roots.
+    /// Cost `O(n^3)` with a large constant (about 1 s at `n = 256`).
+    #[doc(hidden)]
+    pub fn roots_by_eigenvalues(&self) -> Vec<f64> {
+        let Some(p) = self.normalized() else {
+            return Vec::new();
+        };
+        let Some(n) = p.significant_degree() else {
+            return Vec::new();
+        };
+        let eta = p.eval_error_bound();
+        let found = p.eigenvalue_candidates(n, eta);
+        p.merge(found.into_iter().map(wrap).collect(), eta)
+    }
+
+    /// `p` scaled by the power of two that brings its largest coefficient into
+    /// `[1, 2)` (exact: the roots are unchanged and nothing overflows or
+    /// underflows); `None` if a coefficient is not finite or all are zero.
+    fn normalized(&self) -> Option<TrigPoly> {
         let all = std::iter::once(&self.c0).chain(&self.a).chain(&self.b);
         if all.clone().any(|x| !x.is_finite()) {
-            return Vec::new();
+            return None;
         }
         let scale = all.fold(0.0_f64, |m, x| m.max(x.abs()));
         if scale == 0.0 {
-            return Vec::new();
+            return None;
         }
-        // exact power-of-two normalisation to a largest coefficient in [1, 2):
-        // the roots are unchanged and nothing overflows or underflows
         let e = -(scale.log2().floor() as i32);
-        let p = TrigPoly {
+        Some(TrigPoly {
             c0: ldexp(self.c0, e),
             a: self.a.iter().map(|&x| ldexp(x, e)).collect(),
             b: self.b.iter().map(|&x| ldexp(x, e)).collect(),
-        };
-        p.roots_normalized()
+        })
     }
 
-    /// [`TrigPoly::roots`] for finite coefficients of moderate size.
-    fn roots_normalized(&self) -> Vec<f64> {
+    /// The degree without the leading pairs with
+    /// `hypot(a_k, b_k) ≤ ε · max|coefficient|`; `None` if that is 0.
+    fn significant_degree(&self) -> Option<usize> {
         let largest = self
             .a
             .iter()
@@ -321,84 +341,13 @@ impl TrigPoly {
         while n > 0 && self.a[n - 1].hypot(self.b[n - 1]) <= EPS * largest {
             n -= 1;
         }
-        if n == 0 {
-            return Vec::new();
-        }
-        let eta = self.eval_error_bound();
-        let accepted: Vec<f64> = self
-            .candidates(n, eta)
-            .into_iter()
-            .filter_map(|(theta, off)| self.polish_and_verify(theta, off, eta))
-            .map(wrap)
-            .collect();
-        self.merge(accepted, eta)
-    }
-
-    /// Eigenvalues of the balanced companion matrix of `z^n p(θ)`, `p`
-    /// truncated to degree `n`.
-    fn companion_eigenvalues(&self, n: usize) -> Vec<Complex<f64>> {
-        let big_n = 2 * n;
-        // q_j, j = 0..=N
-        let mut q = vec![Complex::new(0.0, 0.0); big_n + 1];
-        q[n] = Complex::new(self.c0, 0.0);
-        for (k, (&ak, &bk)) in (1..=n).zip(self.a.iter().zip(&self.b)) {
-            q[n + k] = Complex::new(ak / 2.0, -bk / 2.0);
-            q[n - k] = Complex::new(ak / 2.0, bk / 2.0);
-        }
-        // monic q: z^N + Σ_{j<N} (q_j/q_N) z^j; first row -q_{N-1}/q_N .. -q_0/q_N
-        let lead = q[big_n];
-        let mut c = DMatrix::<Complex<f64>>::zeros(big_n, big_n);
-        for (j, &qj) in q[..big_n].iter().rev().enumerate() {
-            c[(0, j)] = -qj / lead;
-        }
-        for i in 1..big_n {
-            c[(i, i - 1)] = Complex::new(1.0, 0.0);
-        }
-        balance(&mut c);
-        eigenvalues(c)
-    }
-
-    /// `(arg z, | |z| - 1 |)` for the eigenvalues `z` close enough to the unit
-    /// circle relative to their conditioning at `θ = arg z`: a simple root is
-    /// displaced by `~η/|p'|`, the pair of a double root by `~sqrt(2η/|p''|)`.
-    fn candidates(&self, n: usize, eta: f64) -> Vec<(f64, f64)> {
-        self.companion_eigenvalues(n)
-            .into_iter()
-            .filter(|z| z.re.is_finite() && z.im.is_finite())
-            .filter_map(|z| {
-                let off = (z.norm() - 1.0).abs();
-                if off > MAX_ACCEPT {
-                    return None;
-                }
-                let theta = z.im.atan2(z.re);
-                let (_, dp, d2p) = self.eval_with_two_derivatives(theta);
-                let simple = SIMPLE_ACCEPT * eta / dp.abs();
-                let double = DOUBLE_ACCEPT * (2.0 * eta / d2p.abs()).sqrt();
-                (off <= simple.max(double)).then_some((theta, off))
-            })
-            .collect()
+        (n > 0).then_some(n)
     }
 
     /// `|p(θ)|` is at rounding level: `≤ η + |p'(θ)| ulp(θ)`.
     fn is_zero_at(&self, theta: f64, eta: f64) -> bool {
         let (p, dp) = self.eval_with_derivative(theta);
         p.abs() <= eta + dp.abs() * EPS * theta.abs().max(1.0)
-    }
-
-    /// Newton on `p` from the eigenvalue's `theta0`; if that does not reach
-    /// rounding level, the critical point of `p` nearby (a tangency).
-    /// `None`: not a real root.
-    fn polish_and_verify(&self, theta0: f64, off: f64, eta: f64) -> Option<f64> {
-        let theta = self.newton(theta0);
-        if self.is_zero_at(theta, eta) {
-            return Some(theta);
-        }
-        let (_, _, d2p) = self.eval_with_two_derivatives(theta0);
-        let radius = (10.0 * off)
-            .max(10.0 * (2.0 * eta / d2p.abs()).sqrt())
-            .min(MAX_ACCEPT);
-        let tc = self.critical_point(theta0, radius)?;
-        (self.eval(tc).abs() <= eta).then_some(tc)
     }
 
     /// Newton on `p` with steps bounded by `NEWTON_MAX_STEP`; returns the
@@ -527,90 +476,4 @@ fn ldexp(mut x: f64, mut e: i32) -> f64 {
 fn wrap(theta: f64) -> f64 {
     let t = theta.rem_euclid(TAU);
     if t >= TAU { 0.0 } else { t + 0.0 }
-}
-
-/// Diagonal power-of-two balancing (Parlett–Reinsch with 1-norms, as LAPACK
-/// `zgebal` without permutations): `m ← D⁻¹ m D`, exact, same eigenvalues,
-/// smaller norm, hence smaller absolute eigenvalue errors.
-fn balance(m: &mut DMatrix<Complex<f64>>) {
-    const RADIX: f64 = 2.0;
-    let n = m.nrows();
-    for _sweep in 0..100 {
-        let mut converged = true;
-        for i in 0..n {
-            let mut c = 0.0;
-            let mut r = 0.0;
-            for j in 0..n {
-                if j != i {
-                    c += m[(j, i)].l1_norm();
-                    r += m[(i, j)].l1_norm();
-                }
-            }
-            if c == 0.0 || r == 0.0 {
-                continue;
-            }
-            let s = c + r;
-            let mut f = 1.0;
-            while c < r / RADIX && f < 1e150 {
-                f *= RADIX;
-                c *= RADIX * RADIX;
-            }
-            while c >= r * RADIX && f > 1e-150 {
-                f /= RADIX;
-                c /= RADIX * RADIX;
-            }
-            if (c + r) / f < 0.95 * s {
-                converged = false;
-                m.row_mut(i).scale_mut(1.0 / f);
-                m.column_mut(i).scale_mut(f);
-            }
-        }
-        if converged {
-            break;
-        }
-    }
-}
-
-/// Eigenvalues of a complex square matrix: the diagonal of the triangular
-/// factor of its complex Schur form. nalgebra's QR iteration has no
-/// exceptional shifts, so it is capped and, if it stalls, rerun on unitary
-/// similarities of the matrix (same eigenvalues, same condition numbers).
-fn eigenvalues(m: DMatrix<Complex<f64>>) -> Vec<Complex<f64>> {
-    let max_sweeps = QR_SWEEPS_PER_EIGENVALUE * m.nrows() + QR_SWEEPS_EXTRA;
-    let schur_diagonal = |m: &DMatrix<Complex<f64>>| {
-        Schur::try_new(m.clone(), EPS, max_sweeps)
-            .map(|s| s.unpack().1.diagonal().iter().copied().collect::<Vec<_>>())
-    };
-    if let Some(d) = schur_diagonal(&m) {
-        return d;
-    }
-    let mut seed: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut current = m;
-    for _ in 0..QR_RETRIES {
-        current = householder_similarity(&current, &mut seed);
-        if let Some(d) = schur_diagonal(&current) {
-            return d;
-        }
-    }
-    // Not observed. Candidates from the diagonal are still verified by the
-    // caller, so nothing wrong is returned, but roots may be missing.
-    current.diagonal().iter().copied().collect()
-}
-
-/// `H m H` with the Householder reflector `H = I - 2 v v*/(v* v)` (unitary and
-/// Hermitian) for a deterministic pseudo-random `v`.
-fn householder_similarity(m: &DMatrix<Complex<f64>>, seed: &mut u64) -> DMatrix<Complex<f64>> {
-    let n = m.nrows();
-    let mut next = || {
-        // xorshift64*
-        *seed ^= *seed >> 12;
-        *seed ^= *seed << 25;
-        *seed ^= *seed >> 27;
-        let x = seed.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let v = DVector::<Complex<f64>>::from_fn(n, |_, _| Complex::new(next(), next()));
-    let scale = Complex::new(2.0 / v.norm_squared(), 0.0);
-    let h = DMatrix::<Complex<f64>>::identity(n, n) - (&v * v.adjoint()) * scale;
-    &h * m * &h
 }
