@@ -212,17 +212,17 @@ impl<'a> Finder<'a> {
     /// centred at `m`, and what it certifies (module docs, tests (E), (M), (C)).
     fn classify(&self, g: &Coeffs, m: f64, c: f64, rho: f64) -> (Class, Piece) {
         let e = shift(g, c, rho);
-        let bound = shift(&g.map(f64::abs), c.abs(), rho);
+        // rounding of the shift (module docs, (R4)): Σ_i i^l err_i ≤ γ ρ^l G_l
         let gamma = SAFETY * (2 * ORDER + 4) as f64 * EPS;
         let horner = SAFETY * 2.0 * ORDER as f64 * EPS;
+        let (mut g0, mut g1, mut g2) = (0.0, 0.0, 0.0);
         let (mut s0, mut s1, mut s2) = (0.0, 0.0, 0.0);
-        let (mut t0, mut t1, mut t2) = (0.0, 0.0, 0.0);
         for i in 0..ORDER {
-            let (x, fi) = (e[i].abs(), i as f64);
-            let err = gamma * bound[i];
-            t0 += err;
-            t1 += fi * err;
-            t2 += fi * (fi - 1.0) * err;
+            let fi = i as f64;
+            let (x, y) = (e[i].abs(), g[i].abs());
+            g0 += y;
+            g1 += fi * y;
+            g2 += fi * (fi - 1.0) * y;
             if i >= 1 {
                 s0 += x;
             }
@@ -233,6 +233,7 @@ impl<'a> Finder<'a> {
                 s2 += fi * (fi - 1.0) * x;
             }
         }
+        let (t0, t1, t2) = (gamma * g0, gamma * rho * g1, gamma * rho * rho * g2);
         let [d0, d1, d2] = self.delta;
         let (e0, e1, e2) = (e[0].abs(), e[1].abs(), 2.0 * e[2].abs());
         let unc0 = d0 + t0 + horner * (e0 + s0);
@@ -403,7 +404,10 @@ impl<'a> Finder<'a> {
                     out.push(self.solve(t0, t1, v0.signum(), 0.5 * (t0 + t1)));
                 }
             }
-            if let Some(&(t, _)) = samples.iter().min_by(|x, y| x.1.abs().total_cmp(&y.1.abs())) {
+            if let Some(&(t, _)) = samples
+                .iter()
+                .min_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
+            {
                 self.try_newton(t, out);
             }
         }
@@ -453,8 +457,8 @@ fn horner2(e: &Coeffs, u: f64) -> (f64, f64) {
 
 /// Zero of `f` on `[lo, hi]` where `f(lo)` has the sign `sign_lo` and `f(hi)`
 /// the opposite one: Newton from `x0`, bisection whenever a step would leave
-/// the shrinking bracket or the bracket fails to halve in three steps.
-/// Returns the iterate of smallest `|f|`.
+/// the shrinking bracket or is not at least halving the step before last
+/// (rtsafe). Returns the iterate of smallest `|f|`.
 fn bracketed(f: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64, sign_lo: f64, x0: f64) -> f64 {
     let (mut lo, mut hi) = (lo, hi);
     let mut x = if x0 > lo && x0 < hi {
@@ -463,7 +467,7 @@ fn bracketed(f: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64, sign_lo: f64, x0: 
         0.5 * (lo + hi)
     };
     let mut best = (x, f64::INFINITY);
-    let (mut width, mut stalled) = (hi - lo, 0);
+    let (mut step, mut step_before) = (hi - lo, hi - lo);
     for _ in 0..MAX_ITERS {
         let (fx, dfx) = f(x);
         if fx.abs() < best.1 {
@@ -477,19 +481,18 @@ fn bracketed(f: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64, sign_lo: f64, x0: 
         } else {
             hi = x;
         }
-        if hi - lo < 0.5 * width {
-            (width, stalled) = (hi - lo, 0);
-        } else {
-            stalled += 1;
+        let tol = 2.0 * EPS * x.abs().max(1.0);
+        if (fx / dfx).abs() <= tol {
+            break;
         }
         let newton = x - fx / dfx;
-        let next = if newton > lo && newton < hi && stalled < 3 {
+        let next = if newton > lo && newton < hi && (2.0 * fx).abs() <= (step_before * dfx).abs() {
             newton
         } else {
-            stalled = 0;
             0.5 * (lo + hi)
         };
-        if (next - x).abs() <= 2.0 * EPS * x.abs().max(1.0) {
+        (step_before, step) = (step, next - x);
+        if step.abs() <= tol {
             break;
         }
         x = next;
