@@ -636,3 +636,152 @@ proptest! {
         check_planted(&case)?;
     }
 }
+
+// ---------------------------------------------------------------- high degree
+
+proptest! {
+    #![proptest_config(cases(64))]
+
+    /// m = 2..=512 well separated simple roots, degree up to 256.
+    #[test]
+    fn planted_simple_roots_up_to_degree_256(
+        weights in prop::collection::vec(0.05f64..1.0, 1..=256).prop_map(|w| {
+            let mut w2 = w.clone();
+            w2.extend(w.iter().map(|x| 1.05 - x));
+            w2
+        }),
+        (offset, positive, c) in common(),
+    ) {
+        let min_gap = 0.2 * TAU / weights.len() as f64;
+        let roots = spread(&weights, offset, min_gap);
+        let case = build(roots, vec![], &positive, 256, c);
+        prop_assert!(case.p.degree() <= 256);
+        check_planted(&case)?;
+    }
+
+    /// Tangencies and a close pair among simple roots, degree up to 256.
+    #[test]
+    fn planted_double_roots_and_close_pair_up_to_degree_256(
+        weights in prop::collection::vec(0.05f64..1.0, 8..=120),
+        double_weights in prop::collection::vec(0.05f64..1.0, 1..=6),
+        (offset, positive, c) in common(),
+        log_spacing in -6.0f64..-3.0,
+    ) {
+        let mut w = weights.clone();
+        w.extend(weights.iter().map(|x| 1.05 - x));
+        let n_simple = w.len();
+        w.extend(double_weights.iter());
+        let sites = spread(&w, offset, 0.2 * TAU / w.len() as f64);
+        let mut order: Vec<usize> = (0..sites.len()).collect();
+        order.sort_by_key(|&i| (i * 7919) % sites.len());
+        let mut simple: Vec<f64> = order[..n_simple].iter().map(|&i| sites[i]).collect();
+        let double: Vec<f64> = order[n_simple..].iter().map(|&i| sites[i]).collect();
+        // split one simple root into a close pair (and drop another to keep
+        // the count even)
+        let x = simple.pop().expect("n_simple ≥ 16");
+        simple[0] = x;
+        simple.push(x + 10f64.powf(log_spacing));
+        let case = build(simple, double, &positive, 256, c);
+        check_planted(&case)?;
+    }
+}
+
+#[test]
+fn degree_256_with_512_planted_roots() {
+    // the largest degree the engine is asked for, every root simple
+    let weights: Vec<f64> = (0..512)
+        .map(|i| 1.0 + 0.1 * ((i * 37 % 11) as f64 / 11.0))
+        .collect();
+    let roots = spread(&weights, 0.1, 0.002);
+    let case = build(roots, vec![], &[], 256, 1.0);
+    assert_eq!(case.p.degree(), 256);
+    check_planted(&case).expect("well-conditioned case");
+}
+
+/// Random `c0, a_k, b_k` uniform in `[-1, 1]` (a fixed xorshift stream, so
+/// that CI sees the same 10^4 polynomials).
+fn random_poly(n: usize, state: &mut u64) -> TrigPoly {
+    let mut next = || {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        (*state >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    };
+    let c0 = next();
+    let a = (0..n).map(|_| next()).collect();
+    let b = (0..n).map(|_| next()).collect();
+    TrigPoly::new(c0, a, b)
+}
+
+/// Every returned root is at rounding level (the contract's
+/// `|p| ≤ η + |p'| ulp`).
+fn assert_at_rounding_level(p: &TrigPoly, roots: &[f64]) {
+    let eta = p.eval_error_bound();
+    for &t in roots {
+        let (v, d) = p.eval_with_derivative(t);
+        assert!(
+            v.abs() <= eta + d.abs() * f64::EPSILON * t.max(1.0),
+            "p({t}) = {v:e} > η = {eta:e}"
+        );
+    }
+}
+
+#[test]
+fn ten_thousand_random_polynomials_lose_no_root() {
+    // Independent references: the companion-matrix eigenvalue finder
+    // (`roots_by_eigenvalues`) for degrees up to 48, where it is affordable;
+    // above, the sign changes of p on a grid of 16 n cells: a cell whose end
+    // values are above rounding level with opposite signs holds an odd number
+    // of roots, one with equal signs an even number (random coefficients
+    // give no tangencies), so the roots found in each cell must have that
+    // parity: a missed or spurious root in any cell fails.
+    let total = if OPTIMISED { 10_000 } else { 400 };
+    let mut state = 0x2545_F491_4F6C_DD1D_u64;
+    let mut compared = 0;
+    for i in 0..total {
+        let low = i % 5 == 0;
+        let n = if low {
+            1 + (i / 5) % 48
+        } else {
+            49 + (i * 7) % 208
+        };
+        let p = random_poly(n, &mut state);
+        let found = p.roots();
+        assert_well_formed(&found);
+        assert_at_rounding_level(&p, &found);
+        if low {
+            let old = p.roots_by_eigenvalues();
+            assert_eq!(found.len(), old.len(), "n = {n}: {found:?} vs {old:?}");
+            for (x, y) in found.iter().zip(&old) {
+                let slope = p.eval_with_derivative(*x).1.abs();
+                let tol = 8.0 * p.eval_error_bound() / slope + 1e-14;
+                assert!(cyc(*x, *y) <= tol, "n = {n}: {x} vs {y}");
+            }
+            compared += 1;
+            continue;
+        }
+        let eta = p.eval_error_bound();
+        let cells = 16 * n;
+        let grid: Vec<f64> = (0..=cells).map(|j| TAU * j as f64 / cells as f64).collect();
+        let values: Vec<f64> = grid.iter().map(|&t| p.eval(t)).collect();
+        for j in 0..cells {
+            let (v0, v1) = (values[j], values[j + 1]);
+            if v0.abs() <= eta || v1.abs() <= eta {
+                continue;
+            }
+            let inside = found
+                .iter()
+                .filter(|&&t| t > grid[j] && t < grid[j + 1])
+                .count();
+            let odd = v0.signum() != v1.signum();
+            assert_eq!(
+                inside % 2 == 1,
+                odd,
+                "n = {n}: {inside} roots in cell [{}, {}] with values {v0:e}, {v1:e}",
+                grid[j],
+                grid[j + 1]
+            );
+        }
+    }
+    assert!(compared >= total / 5);
+}

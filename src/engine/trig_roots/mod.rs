@@ -6,80 +6,138 @@
 //! p(θ) = c0 + Σ_{k=1}^{n} ( a_k cos kθ + b_k sin kθ ),   θ ∈ [0, 2π).
 //! ```
 //!
-//! [`TrigPoly::roots`] finds all its real roots without sampling:
+//! [`TrigPoly::roots`] finds all its real roots by certified subdivision in
+//! `O(n^2)` operations, with a proof (below) that none is missed.
 //!
-//! 1. *Substitution.* With `z = e^{iθ}`, `cos kθ = (z^k + z^{-k})/2` and
-//!    `sin kθ = (z^k - z^{-k})/(2i)`, so `q(z) = z^n p(θ)` is an ordinary
-//!    polynomial of degree `N = 2n` with complex coefficients
-//!    `q_{n+k} = (a_k - i b_k)/2`, `q_{n-k} = (a_k + i b_k)/2`, `q_n = c0`.
-//!    As `q_{N-j} = conj(q_j)`, its roots come in pairs `z, 1/conj(z)` with the
-//!    same argument; the real roots of `p` are the arguments of its roots on
-//!    the unit circle.
-//! 2. *Eigenvalues.* The coefficients are scaled by a power of two (exact), and
-//!    leading pairs with `hypot(a_n, b_n) ≤ ε · max` are dropped (a change of
-//!    `p` at rounding level). The roots of `q` are the eigenvalues of its upper
-//!    Hessenberg companion matrix, balanced by a diagonal power-of-two
-//!    similarity (Parlett–Reinsch, exact) and reduced to complex Schur form by
-//!    nalgebra's [`Schur`] on a `DMatrix<Complex<f64>>`: the eigenvalues are
-//!    the diagonal of the triangular factor. nalgebra's shifted QR has no
-//!    exceptional shifts and stalls on symmetric companions such as that of
-//!    `z^N + 1` (`p = cos nθ`), so it runs with an iteration cap and, on
-//!    failure, is rerun on a unitary (Householder) similarity of the matrix,
-//!    which has the same eigenvalues and condition numbers.
-//! 3. *Selection.* With `η` = [`TrigPoly::eval_error_bound`], the rounding
-//!    level of `p`, an eigenvalue `z` is a candidate when `| |z| - 1 |` is
-//!    below a tolerance scaled by its conditioning, evaluated at `θ = arg z`:
-//!    a generous multiple of `η/|p'|` (a simple root moves by that much) or of
-//!    `sqrt(2η/|p''|)` (a double root, a tangency, splits into a pair displaced
-//!    by that much, possibly both off the circle), whichever is larger.
-//! 4. *Polish and verification.* Each candidate is polished by Newton on `p`
-//!    (bounded steps; the iterate of smallest `|p|` is kept, which is the
-//!    unpolished value if Newton diverges) and accepted if `|p| ≤ η + |p'| ulp(θ)`
-//!    there. Otherwise it may be a tangency: Newton on `p'` (the nearby
-//!    critical point of `p`), accepted if `|p| ≤ η` there. Eigenvalues near
-//!    the circle that are not real roots (a minimum of `|p|` above rounding
-//!    level) are rejected here.
-//! 5. *Double roots and duplicates.* Adjacent accepted values `θ_a < θ_b`
-//!    (cyclically, across the `0/2π` seam) are one root when `p` at their
-//!    midpoint is at rounding level; a genuine pair of simple roots has `p`
-//!    clearly nonzero between them and is kept. A merged group, or a root with
-//!    `p' ≈ 0`, is reported once: at the critical point of `p` if that lies
-//!    within the group and `|p|` is at rounding level there, else at the member
-//!    of smallest `|p|`. The values are wrapped into `[0, 2π)` and sorted.
+//! # Method
 //!
-//! Cost: `O(n^3)` for [`TrigPoly::roots`] (about 7 ms for `n = 32` and 60 ms
-//! for `n = 64`, optimised build); [`TrigPoly::eval`] and its derivative
+//! 0. *Scaling.* The coefficients are scaled by a power of two (exact) to a
+//!    largest one in `[1, 2)`. Leading pairs with `hypot(a_k, b_k) ≤ ε · max`
+//!    are left out of the models below (degree `n` from here on); their sum
+//!    and its derivatives are added to the model errors, and every full
+//!    evaluation keeps them.
+//! 1. *Taylor models.* The circle is covered by `N = ⌈π n / 2⌉` (at least 3)
+//!    intervals `[m - r, m + r]`, `m = (i + 1/2) 2π/N`, `r = (π/N)(1 + 10^-9)`
+//!    (the overlap covers the rounding of `m`), so `n r ≤ 2`. On each, with
+//!    `θ = m + r s`, `s ∈ [-1, 1]` and `W_k = (a_k - i b_k) e^{ikm}`,
+//!
+//!    ```text
+//!    p(m + r s) = Σ_{j<24} g_j s^j + R,   g_j = Σ_k (k r)^j / j! · Re(i^j W_k)  (+ c0 for j = 0),
+//!    ```
+//!
+//!    one `sin_cos` and the rotation recurrence for all `e^{ikm}`, `O(24 n)`.
+//!    The Lagrange remainder is `|R| ≤ Σ_k |W_k| (k r)^24 / 24! ≤ 3e-17 Σ|W_k|`,
+//!    and similarly for the `s`-derivatives. Rounding (R1-R3): the recurrence
+//!    gives `e^{ikm}` to `≤ 5 k ε` (one `sin_cos` to 1 ulp, then `k` complex
+//!    products of `2√2 ε` each), so `Re(i^j W_k)` is off by
+//!    `≤ (5k + 3) ε (|a_k| + |b_k|)`; the factors `(kr)^j/j!` carry `≤ 3·24 ε`
+//!    relative error and the sums over `k` `≤ n ε` of their absolute terms.
+//!    Summed with the weights `Σ_j (kr)^j/j!`, `Σ_j j (kr)^j/j!`,
+//!    `Σ_j j(j-1) (kr)^j/j!` this gives `δ_0, δ_1, δ_2`: bounds on
+//!    `|p - q|`, `|d/ds p - q'|`, `|d²/ds² p - q''|` on `[-1, 1]` for the
+//!    computed `q(s) = Σ g_j s^j`, all multiplied by a safety factor 2.
+//! 2. *Subdivision.* A piece `s ∈ [c - ρ, c + ρ]` (`ρ` a power of two) is
+//!    rewritten as `u ↦ q(c + ρ u) = Σ e_i u^i`, `u ∈ [-1, 1]`, by a Horner
+//!    Taylor shift (R4: each `e_i` off by `≤ γ ρ^i Σ_j C(j,i) |c|^{j-i} |g_j|`,
+//!    `γ = 2 (2·24 + 4) ε`, whence `Σ_i i^l err_i ≤ γ ρ^l Σ_j j^l |g_j|`). With
+//!    `U_0 = δ_0 + Σ err_i`, `U_1 = ρ δ_1 + Σ i err_i`,
+//!    `U_2 = ρ² δ_2 + Σ i(i-1) err_i`, each plus the rounding of its own sum:
+//!    * (E) `|e_0| - Σ_{i≥1} |e_i| > U_0` ⇒ `|p| > 0` on the piece: **excluded**;
+//!    * (M) `|e_1| - Σ_{i≥2} i |e_i| > U_1` ⇒ `p' ≠ 0`: **monotone**;
+//!    * (C) `2|e_2| - Σ_{i≥3} i(i-1) |e_i| = U_2 + μ_u`, `μ_u > 0` ⇒
+//!      `|p''| ≥ μ_u / (rρ)²`: **convex** (or concave);
+//!    * otherwise the piece is bisected, down to a half-width of `6e-8` rad,
+//!      below which it is **unresolved**.
+//!
+//!    Each lower bound is the triangle inequality on the Taylor expansion of
+//!    the model at `c`, with the model and rounding errors subtracted, so it
+//!    holds for `p` itself.
+//! 3. *Resolution* (full `O(n)` evaluations, `η` = [`TrigPoly::eval_error_bound`]
+//!    taken as the bound on the error of a computed `p(θ)`). The sign of `p`
+//!    at a piece end is that of `q` if `|q| > U_0` there, else that of the
+//!    full `p(θ)` if `|p(θ)| > η`, else "zero" (rounding level).
+//!    * Monotone piece: opposite signs at the ends ⇒ exactly one root, found
+//!      by Newton from the model root, safeguarded by bisection in the bracket
+//!      (rtsafe); equal nonzero signs ⇒ no root; an end at rounding level ⇒
+//!      Newton from that end, kept if it reaches `|p| ≤ η + |p'| ulp`.
+//!    * Convex piece: if `p'` has one certified sign, as monotone. Else the
+//!      critical point `θ_c` (model root of `q'`, then Newton on `p'` inside the
+//!      piece). `|p(θ_c)| ≤ η` ⇒ a tangency, reported once at `θ_c`. If
+//!      `σ p(θ_c) > η + (|p'(θ_c)| + η')²/(2μ)` (`σ` the sign of `p''`, `μ` its
+//!      certified lower bound, `η'` the rounding level of `p'`), then by
+//!      convexity `σ p ≥ σ p(θ_c) - p'(θ_c)²/(2μ) > 0` on the piece: no root.
+//!      Otherwise `p(θ_c)` is clearly nonzero and each side of `θ_c`, on which
+//!      `p` is monotone, is resolved as a monotone piece with `θ_c` as one end.
+//!    * Unresolved pieces (a root of multiplicity ≥ 3, or `p`, `p'`, `p''` all
+//!      within the model error) are joined into clusters, each sampled at 9
+//!      points: a bracketed solve per certified sign change, and Newton from
+//!      the sample of smallest `|p|`, kept if it reaches rounding level.
+//! 4. *Merge.* Adjacent candidates `θ_a < θ_b` (cyclically, across the
+//!    `0/2π` seam) are one root when `p` at their midpoint is at rounding
+//!    level; a genuine pair of simple roots has `p` clearly nonzero between
+//!    them and is kept. A merged group, or a root with `p' ≈ 0`, is reported
+//!    once: at the critical point of `p` if that lies within the group and
+//!    `|p|` is at rounding level there, else at the member of smallest `|p|`.
+//!    The values are wrapped into `[0, 2π)` and sorted.
+//!
+//! # No root is missed
+//!
+//! Let `θ*` be a root of `p` (exact coefficients). The top-level intervals
+//! cover the circle, and every piece is either bisected into two halves that
+//! cover it or classified, so `θ*` lies in a classified piece `J`:
+//! * `J` excluded: impossible, (E) proves `|p| > 0` on `J` (the bounds
+//!   include the remainder, the left-out terms and every rounding, 1-2).
+//! * `J` monotone: `θ*` is its only root. Signs at the ends are true signs
+//!   (`|q| > U_0` or `|p̂| > η`), so if both are nonzero they are opposite and
+//!   the bracketed solve, which keeps a sign-change bracket, converges to
+//!   `θ*` (to `~η/|p'|`). If an end is at rounding level, `|p| ≤ 2η` there and
+//!   `θ*` is within `2η / min_J |p'|` of it: Newton from that end reaches it.
+//! * `J` convex: `p'` is monotone, so `p` has at most two roots, one on each
+//!   side of the extremum `t*`. If `|p(θ_c)| ≤ η`, both lie within the band
+//!   `|p| ≤ 2η` around `θ_c` and are reported as one tangency (the contract).
+//!   The no-root branch is excluded by the convexity bound. Otherwise
+//!   `σ p(θ_c) ≤ -η`, or it is within `(|p'(θ_c)| + η')²/(2μ)` of the
+//!   rounding level (after Newton on `p'`, `|p'(θ_c)| ~ η'` and this margin
+//!   is `~1e-28`: a near-tangency at rounding level, decided by rounding as
+//!   the contract says); each side `[end, θ_c]` is then monotone except for
+//!   the stretch between `θ_c` and `t*`, where `σ p` stays at most
+//!   `σ p(θ_c) < 0`, so the side's root is found as in the monotone case.
+//! * `J` unresolved: `θ*` lies in a cluster of width `~1e-7` where `p`, `p'`
+//!   and `p''` are all within the model error: a root of multiplicity ≥ 3,
+//!   which is reported once (a sign change between samples, or the sample of
+//!   smallest `|p|` polished to rounding level), to about `ε^{1/m}`.
+//!
+//! The merge only joins candidates with `p` at rounding level between them,
+//! so it never loses a root that the contract keeps apart. The only
+//! assumption beyond the derived bounds is that `η` bounds the error of a
+//! computed `p(θ)` (it is 4 times the largest error measured, see
+//! [`TrigPoly::eval_error_bound`]).
+//!
+//! Cost: `O(24 n)` per top-level interval, `O(n^2)` in all, plus `O(24²)` per
+//! piece and a few `O(n)` evaluations per root: about 0.2 ms for `n = 64`
+//! and 2-3 ms for `n = 256` (`cargo run --release --example roots_bench`),
+//! against 0.1 s and 5 s for the companion-matrix finder kept as
+//! [`TrigPoly::roots_by_eigenvalues`]. [`TrigPoly::eval`] and its derivative
 //! variants are `O(n)` with one `sin_cos` and no allocation.
 
 use std::f64::consts::TAU;
 
-use nalgebra::{Complex, DMatrix, DVector, Schur};
+use nalgebra::Complex;
+
+mod eigen;
+mod isolate;
 
 /// Machine epsilon.
 const EPS: f64 = f64::EPSILON;
 /// Safety factor of the rounding level `η` over the measured evaluation error.
 const NOISE_FACTOR: f64 = 16.0;
-/// Multiple of the simple-root displacement `η/|p'|` accepted off the circle
-/// (measured displacements stay below 100).
-const SIMPLE_ACCEPT: f64 = 1.0e4;
-/// Multiple of the double-root displacement `sqrt(2η/|p''|)` accepted off the
-/// circle (measured displacements stay below 1).
-const DOUBLE_ACCEPT: f64 = 1.0e2;
-/// No candidate farther than this from the circle (a root of multiplicity `m`
-/// spreads over `~ε^{1/m}`: this admits `m ≤ 8`).
+/// Largest distance of a merged root from its group (a root of multiplicity
+/// `m` spreads over `~ε^{1/m}`: this admits `m ≤ 8`).
 const MAX_ACCEPT: f64 = 1.0e-2;
 /// Newton iterations (linear convergence at double roots needs more than a few).
 const NEWTON_ITERS: usize = 30;
 /// Largest single Newton step on `p`, radians.
 const NEWTON_MAX_STEP: f64 = 1.0e-3;
-/// Shifted-QR sweeps allowed: `QR_SWEEPS_PER_EIGENVALUE · N + QR_SWEEPS_EXTRA`
-/// before the iteration is declared stalled. Measured needs: up to `2.9 N`
-/// for random companions (`N ≤ 128`), plus about 20 per multiple root.
-const QR_SWEEPS_PER_EIGENVALUE: usize = 5;
-/// See [`QR_SWEEPS_PER_EIGENVALUE`].
-const QR_SWEEPS_EXTRA: usize = 100;
-/// Reruns on unitary similarities after a stall.
-const QR_RETRIES: usize = 6;
 
 /// A real trigonometric polynomial
 /// `p(θ) = c0 + Σ_{k=1}^{n} (a[k-1] cos kθ + b[k-1] sin kθ)`.
@@ -255,8 +313,9 @@ impl TrigPoly {
 
     /// All real roots in `[0, 2π)`, sorted ascending, each reported once.
     ///
-    /// Method: eigenvalues of the companion matrix of `z^n p`, Newton polish;
-    /// see the module documentation.
+    /// Method: certified subdivision with Taylor models, one bracketed solve
+    /// per isolated root; see the module documentation, which also proves that
+    /// no root is missed.
     ///
     /// # Contract
     ///
@@ -283,35 +342,65 @@ impl TrigPoly {
     ///   polynomial (whose "roots" are every θ). Leading pairs with
     ///   `hypot(a_n, b_n) ≤ ε · max|coefficient|` are ignored. Non-finite
     ///   coefficients give an empty vector.
-    /// * Every root comes from an eigenvalue: none is found by sampling. A root
-    ///   can only be missed if its eigenvalue is farther from the unit circle
-    ///   than the conditioning-scaled tolerance (`10^4 η/|p'|` or
-    ///   `100 sqrt(2η/|p''|)`, whichever is larger); this has not been observed
-    ///   up to degree 256 (random coefficients, roots counted independently).
+    /// * No root is missed: every root of `p` is reported (within the bounds
+    ///   above), except that roots closer together than the rounding level
+    ///   allows are reported once (module documentation, "No root is
+    ///   missed"). Nothing is sampled: excluded intervals carry a proof.
     ///
-    /// Cost: `O(n^3)`, the complex Schur form of a `2n × 2n` matrix.
+    /// Cost: `O(n^2)`; about 0.2 ms for `n = 64`, 2-3 ms for `n = 256`.
     pub fn roots(&self) -> Vec<f64> {
+        let Some(p) = self.normalized() else {
+            return Vec::new();
+        };
+        let Some(n) = p.significant_degree() else {
+            return Vec::new();
+        };
+        let eta = p.eval_error_bound();
+        let found = isolate::candidates(&p, n, eta);
+        p.merge(found.into_iter().map(wrap).collect(), eta)
+    }
+
+    /// The previous root finder, kept as an independent test oracle for
+    /// [`TrigPoly::roots`]: eigenvalues of the `2n × 2n` companion matrix of
+    /// `z^n p(θ)` (nalgebra's complex Schur form), then the same polish and
+    /// merge. Same contract except that it proves nothing about missed roots.
+    /// Cost `O(n^3)` with a large constant (about 1 s at `n = 256`).
+    #[doc(hidden)]
+    pub fn roots_by_eigenvalues(&self) -> Vec<f64> {
+        let Some(p) = self.normalized() else {
+            return Vec::new();
+        };
+        let Some(n) = p.significant_degree() else {
+            return Vec::new();
+        };
+        let eta = p.eval_error_bound();
+        let found = p.eigenvalue_candidates(n, eta);
+        p.merge(found.into_iter().map(wrap).collect(), eta)
+    }
+
+    /// `p` scaled by the power of two that brings its largest coefficient into
+    /// `[1, 2)` (exact: the roots are unchanged and nothing overflows or
+    /// underflows); `None` if a coefficient is not finite or all are zero.
+    fn normalized(&self) -> Option<TrigPoly> {
         let all = std::iter::once(&self.c0).chain(&self.a).chain(&self.b);
         if all.clone().any(|x| !x.is_finite()) {
-            return Vec::new();
+            return None;
         }
         let scale = all.fold(0.0_f64, |m, x| m.max(x.abs()));
         if scale == 0.0 {
-            return Vec::new();
+            return None;
         }
-        // exact power-of-two normalisation to a largest coefficient in [1, 2):
-        // the roots are unchanged and nothing overflows or underflows
         let e = -(scale.log2().floor() as i32);
-        let p = TrigPoly {
+        Some(TrigPoly {
             c0: ldexp(self.c0, e),
             a: self.a.iter().map(|&x| ldexp(x, e)).collect(),
             b: self.b.iter().map(|&x| ldexp(x, e)).collect(),
-        };
-        p.roots_normalized()
+        })
     }
 
-    /// [`TrigPoly::roots`] for finite coefficients of moderate size.
-    fn roots_normalized(&self) -> Vec<f64> {
+    /// The degree without the leading pairs with
+    /// `hypot(a_k, b_k) ≤ ε · max|coefficient|`; `None` if that is 0.
+    fn significant_degree(&self) -> Option<usize> {
         let largest = self
             .a
             .iter()
@@ -321,84 +410,13 @@ impl TrigPoly {
         while n > 0 && self.a[n - 1].hypot(self.b[n - 1]) <= EPS * largest {
             n -= 1;
         }
-        if n == 0 {
-            return Vec::new();
-        }
-        let eta = self.eval_error_bound();
-        let accepted: Vec<f64> = self
-            .candidates(n, eta)
-            .into_iter()
-            .filter_map(|(theta, off)| self.polish_and_verify(theta, off, eta))
-            .map(wrap)
-            .collect();
-        self.merge(accepted, eta)
-    }
-
-    /// Eigenvalues of the balanced companion matrix of `z^n p(θ)`, `p`
-    /// truncated to degree `n`.
-    fn companion_eigenvalues(&self, n: usize) -> Vec<Complex<f64>> {
-        let big_n = 2 * n;
-        // q_j, j = 0..=N
-        let mut q = vec![Complex::new(0.0, 0.0); big_n + 1];
-        q[n] = Complex::new(self.c0, 0.0);
-        for (k, (&ak, &bk)) in (1..=n).zip(self.a.iter().zip(&self.b)) {
-            q[n + k] = Complex::new(ak / 2.0, -bk / 2.0);
-            q[n - k] = Complex::new(ak / 2.0, bk / 2.0);
-        }
-        // monic q: z^N + Σ_{j<N} (q_j/q_N) z^j; first row -q_{N-1}/q_N .. -q_0/q_N
-        let lead = q[big_n];
-        let mut c = DMatrix::<Complex<f64>>::zeros(big_n, big_n);
-        for (j, &qj) in q[..big_n].iter().rev().enumerate() {
-            c[(0, j)] = -qj / lead;
-        }
-        for i in 1..big_n {
-            c[(i, i - 1)] = Complex::new(1.0, 0.0);
-        }
-        balance(&mut c);
-        eigenvalues(c)
-    }
-
-    /// `(arg z, | |z| - 1 |)` for the eigenvalues `z` close enough to the unit
-    /// circle relative to their conditioning at `θ = arg z`: a simple root is
-    /// displaced by `~η/|p'|`, the pair of a double root by `~sqrt(2η/|p''|)`.
-    fn candidates(&self, n: usize, eta: f64) -> Vec<(f64, f64)> {
-        self.companion_eigenvalues(n)
-            .into_iter()
-            .filter(|z| z.re.is_finite() && z.im.is_finite())
-            .filter_map(|z| {
-                let off = (z.norm() - 1.0).abs();
-                if off > MAX_ACCEPT {
-                    return None;
-                }
-                let theta = z.im.atan2(z.re);
-                let (_, dp, d2p) = self.eval_with_two_derivatives(theta);
-                let simple = SIMPLE_ACCEPT * eta / dp.abs();
-                let double = DOUBLE_ACCEPT * (2.0 * eta / d2p.abs()).sqrt();
-                (off <= simple.max(double)).then_some((theta, off))
-            })
-            .collect()
+        (n > 0).then_some(n)
     }
 
     /// `|p(θ)|` is at rounding level: `≤ η + |p'(θ)| ulp(θ)`.
     fn is_zero_at(&self, theta: f64, eta: f64) -> bool {
         let (p, dp) = self.eval_with_derivative(theta);
         p.abs() <= eta + dp.abs() * EPS * theta.abs().max(1.0)
-    }
-
-    /// Newton on `p` from the eigenvalue's `theta0`; if that does not reach
-    /// rounding level, the critical point of `p` nearby (a tangency).
-    /// `None`: not a real root.
-    fn polish_and_verify(&self, theta0: f64, off: f64, eta: f64) -> Option<f64> {
-        let theta = self.newton(theta0);
-        if self.is_zero_at(theta, eta) {
-            return Some(theta);
-        }
-        let (_, _, d2p) = self.eval_with_two_derivatives(theta0);
-        let radius = (10.0 * off)
-            .max(10.0 * (2.0 * eta / d2p.abs()).sqrt())
-            .min(MAX_ACCEPT);
-        let tc = self.critical_point(theta0, radius)?;
-        (self.eval(tc).abs() <= eta).then_some(tc)
     }
 
     /// Newton on `p` with steps bounded by `NEWTON_MAX_STEP`; returns the
@@ -527,90 +545,4 @@ fn ldexp(mut x: f64, mut e: i32) -> f64 {
 fn wrap(theta: f64) -> f64 {
     let t = theta.rem_euclid(TAU);
     if t >= TAU { 0.0 } else { t + 0.0 }
-}
-
-/// Diagonal power-of-two balancing (Parlett–Reinsch with 1-norms, as LAPACK
-/// `zgebal` without permutations): `m ← D⁻¹ m D`, exact, same eigenvalues,
-/// smaller norm, hence smaller absolute eigenvalue errors.
-fn balance(m: &mut DMatrix<Complex<f64>>) {
-    const RADIX: f64 = 2.0;
-    let n = m.nrows();
-    for _sweep in 0..100 {
-        let mut converged = true;
-        for i in 0..n {
-            let mut c = 0.0;
-            let mut r = 0.0;
-            for j in 0..n {
-                if j != i {
-                    c += m[(j, i)].l1_norm();
-                    r += m[(i, j)].l1_norm();
-                }
-            }
-            if c == 0.0 || r == 0.0 {
-                continue;
-            }
-            let s = c + r;
-            let mut f = 1.0;
-            while c < r / RADIX && f < 1e150 {
-                f *= RADIX;
-                c *= RADIX * RADIX;
-            }
-            while c >= r * RADIX && f > 1e-150 {
-                f /= RADIX;
-                c /= RADIX * RADIX;
-            }
-            if (c + r) / f < 0.95 * s {
-                converged = false;
-                m.row_mut(i).scale_mut(1.0 / f);
-                m.column_mut(i).scale_mut(f);
-            }
-        }
-        if converged {
-            break;
-        }
-    }
-}
-
-/// Eigenvalues of a complex square matrix: the diagonal of the triangular
-/// factor of its complex Schur form. nalgebra's QR iteration has no
-/// exceptional shifts, so it is capped and, if it stalls, rerun on unitary
-/// similarities of the matrix (same eigenvalues, same condition numbers).
-fn eigenvalues(m: DMatrix<Complex<f64>>) -> Vec<Complex<f64>> {
-    let max_sweeps = QR_SWEEPS_PER_EIGENVALUE * m.nrows() + QR_SWEEPS_EXTRA;
-    let schur_diagonal = |m: &DMatrix<Complex<f64>>| {
-        Schur::try_new(m.clone(), EPS, max_sweeps)
-            .map(|s| s.unpack().1.diagonal().iter().copied().collect::<Vec<_>>())
-    };
-    if let Some(d) = schur_diagonal(&m) {
-        return d;
-    }
-    let mut seed: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut current = m;
-    for _ in 0..QR_RETRIES {
-        current = householder_similarity(&current, &mut seed);
-        if let Some(d) = schur_diagonal(&current) {
-            return d;
-        }
-    }
-    // Not observed. Candidates from the diagonal are still verified by the
-    // caller, so nothing wrong is returned, but roots may be missing.
-    current.diagonal().iter().copied().collect()
-}
-
-/// `H m H` with the Householder reflector `H = I - 2 v v*/(v* v)` (unitary and
-/// Hermitian) for a deterministic pseudo-random `v`.
-fn householder_similarity(m: &DMatrix<Complex<f64>>, seed: &mut u64) -> DMatrix<Complex<f64>> {
-    let n = m.nrows();
-    let mut next = || {
-        // xorshift64*
-        *seed ^= *seed >> 12;
-        *seed ^= *seed << 25;
-        *seed ^= *seed >> 27;
-        let x = seed.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let v = DVector::<Complex<f64>>::from_fn(n, |_, _| Complex::new(next(), next()));
-    let scale = Complex::new(2.0 / v.norm_squared(), 0.0);
-    let h = DMatrix::<Complex<f64>>::identity(n, n) - (&v * v.adjoint()) * scale;
-    &h * m * &h
 }

@@ -1,0 +1,501 @@
+//! Certified isolation of the real roots of a trigonometric polynomial:
+//! subdivision with Taylor models of bounded error, then one bracketed solve
+//! per isolated root. The method, the error bounds and the proof that no root
+//! is missed are in the documentation of the parent module; the names here
+//! (`g`, `e`, `δ_0`, `u_0`, ...) follow it.
+
+use std::f64::consts::{PI, TAU};
+
+use super::{EPS, NEWTON_ITERS, TrigPoly};
+
+/// Terms of a Taylor model: orders `j < ORDER`.
+const ORDER: usize = 24;
+/// Even and odd orders are accumulated separately (vectorisable loops).
+const HALF: usize = ORDER / 2;
+/// Bound on `n r`, degree times the half-width of a top-level interval: the
+/// remainder `(n r)^ORDER / ORDER!` is then below `3e-17`.
+const NR: f64 = 2.0;
+/// Safety factor applied to every rounding bound.
+const SAFETY: f64 = 2.0;
+/// Relative overlap of neighbouring top-level intervals (covers the rounding
+/// of their centres).
+const OVERLAP: f64 = 1.0e-9;
+/// Half-width (radians) below which a piece without a certificate is not
+/// bisected further but handed to the cluster rule.
+const FLOOR: f64 = 6.0e-8;
+/// Iterations of the bracketed solver (bisection alone needs at most 64).
+const MAX_ITERS: usize = 100;
+/// Interior samples of an unresolved cluster.
+const CLUSTER_SAMPLES: usize = 8;
+
+/// Coefficients of a Taylor model in its scaled variable.
+type Coeffs = [f64; ORDER];
+
+/// Candidate roots (not wrapped, possibly repeated) of the normalised `p`,
+/// whose terms above degree `n` are negligible; `eta` its rounding level.
+pub(super) fn candidates(p: &TrigPoly, n: usize, eta: f64) -> Vec<f64> {
+    Finder::new(p, n, eta).run()
+}
+
+/// What a Taylor model certifies on a piece.
+enum Class {
+    /// `|p| > 0` on the piece.
+    Excluded,
+    /// `|p'| > 0`: at most one root.
+    Monotone,
+    /// `|p''| ≥ mu_u` (in the scaled variable): at most two roots.
+    Convex { mu_u: f64 },
+    /// Nothing certified.
+    Undecided,
+}
+
+/// A piece `θ = centre + half · u`, `u ∈ [-1, 1]`, with its model
+/// `q(u) = Σ e_i u^i`: `|p(θ(u)) - q(u)| ≤ unc0` and
+/// `|half · p'(θ(u)) - q'(u)| ≤ unc1` (computed `q`, `q'` included).
+struct Piece {
+    centre: f64,
+    half: f64,
+    e: Coeffs,
+    unc0: f64,
+    unc1: f64,
+}
+
+impl Piece {
+    fn theta(&self, u: f64) -> f64 {
+        self.centre + self.half * u
+    }
+}
+
+struct Finder<'a> {
+    /// The normalised polynomial, all its terms (full evaluations).
+    p: &'a TrigPoly,
+    /// Degree of the models.
+    n: usize,
+    /// Half-width of the top-level intervals.
+    r: f64,
+    /// Number of top-level intervals.
+    count: usize,
+    /// `(k r)^j / j!` for even `j` (row `k - 1`).
+    pow_even: Vec<[f64; HALF]>,
+    /// `(k r)^j / j!` for odd `j`.
+    pow_odd: Vec<[f64; HALF]>,
+    /// `δ_0, δ_1, δ_2`: model error bounds of `p`, `d/ds p`, `d²/ds² p`.
+    delta: [f64; 3],
+    /// Rounding level of [`TrigPoly::eval`] (`η`).
+    eta: f64,
+    /// Rounding level of the computed `p'`.
+    eta1: f64,
+}
+
+impl<'a> Finder<'a> {
+    fn new(p: &'a TrigPoly, n: usize, eta: f64) -> Self {
+        let count = ((PI * n as f64 / NR).ceil() as usize).max(3);
+        let r = 0.5 * TAU / count as f64 * (1.0 + OVERLAP);
+        let mut pow_even = Vec::with_capacity(n);
+        let mut pow_odd = Vec::with_capacity(n);
+        let mut delta = [0.0; 3];
+        let mut eta1 = 0.0;
+        let mut value_sum = p.c0.abs();
+        for k in 1..=n {
+            let x = k as f64 * r;
+            let mut t = [0.0; ORDER];
+            t[0] = 1.0;
+            for j in 1..ORDER {
+                t[j] = t[j - 1] * x / j as f64;
+            }
+            let mass = p.a[k - 1].abs() + p.b[k - 1].abs();
+            // Lagrange remainders of orders ORDER, ORDER-1, ORDER-2 of the
+            // k-th term and its s-derivatives: mass · x^ORDER / (ORDER-i)!
+            let tail = t[ORDER - 1] * x / ORDER as f64 * mass;
+            // rounding of the k-th term of every g_j (module docs, (R1)-(R3))
+            let round = EPS * (5.0 * k as f64 + n as f64 + 3.0 * ORDER as f64 + 6.0) * mass;
+            let (mut s0, mut s1, mut s2) = (0.0, 0.0, 0.0);
+            for (j, &tj) in t.iter().enumerate() {
+                let j = j as f64;
+                s0 += tj;
+                s1 += j * tj;
+                s2 += j * (j - 1.0) * tj;
+            }
+            let kk = ORDER as f64;
+            delta[0] += tail + round * s0;
+            delta[1] += tail * kk + round * s1;
+            delta[2] += tail * kk * (kk - 1.0) + round * s2;
+            value_sum += mass * s0;
+            eta1 += (k as f64).powf(1.5) * mass;
+            pow_even.push(std::array::from_fn(|i| t[2 * i]));
+            pow_odd.push(std::array::from_fn(|i| t[2 * i + 1]));
+        }
+        // the terms above degree n, left out of the models
+        for k in n + 1..=p.a.len() {
+            let x = k as f64 * r;
+            let mass = p.a[k - 1].abs() + p.b[k - 1].abs();
+            delta[0] += mass;
+            delta[1] += mass * x;
+            delta[2] += mass * x * x;
+            eta1 += (k as f64).powf(1.5) * mass;
+        }
+        // rounding of g_0 + c0
+        delta[0] += EPS * value_sum;
+        Self {
+            p,
+            n,
+            r,
+            count,
+            pow_even,
+            pow_odd,
+            delta: delta.map(|d| SAFETY * d),
+            eta,
+            eta1: 16.0 * EPS * eta1,
+        }
+    }
+
+    fn run(&self) -> Vec<f64> {
+        let mut out = Vec::new();
+        let mut unresolved = Vec::new();
+        let h = TAU / self.count as f64;
+        for i in 0..self.count {
+            let m = (i as f64 + 0.5) * h;
+            let g = self.taylor(m);
+            let mut stack = vec![(0.0, 1.0)];
+            while let Some((c, rho)) = stack.pop() {
+                let (class, piece) = self.classify(&g, m, c, rho);
+                match class {
+                    Class::Excluded => {}
+                    Class::Monotone => self.resolve_monotone(&piece, &mut out),
+                    Class::Convex { mu_u } => self.resolve_convex(&piece, mu_u, &mut out),
+                    Class::Undecided if piece.half <= FLOOR => {
+                        unresolved.push((piece.theta(-1.0), piece.theta(1.0)));
+                    }
+                    Class::Undecided => {
+                        stack.push((c - 0.5 * rho, 0.5 * rho));
+                        stack.push((c + 0.5 * rho, 0.5 * rho));
+                    }
+                }
+            }
+        }
+        self.resolve_clusters(unresolved, &mut out);
+        out
+    }
+
+    /// `g_j = r^j p^{(j)}(m) / j!`, `j < ORDER`: the Taylor coefficients of
+    /// `s ↦ p(m + r s)`, from one `sin_cos` and the rotation recurrence.
+    fn taylor(&self, m: f64) -> Coeffs {
+        let (s1, c1) = m.sin_cos();
+        let (mut ck, mut sk) = (1.0, 0.0);
+        let mut even = [0.0; HALF];
+        let mut odd = [0.0; HALF];
+        let terms = self.p.a[..self.n].iter().zip(&self.p.b[..self.n]);
+        for (((&ak, &bk), pe), po) in terms.zip(&self.pow_even).zip(&self.pow_odd) {
+            let c = ck * c1 - sk * s1;
+            sk = sk * c1 + ck * s1;
+            ck = c;
+            // W_k = (a_k - i b_k) e^{ikm} = u + i v
+            let u = ak * ck + bk * sk;
+            let v = ak * sk - bk * ck;
+            for i in 0..HALF {
+                even[i] += pe[i] * u;
+                odd[i] += po[i] * v;
+            }
+        }
+        // Re(i^j W): u, -v, -u, v for j = 0, 1, 2, 3 (mod 4)
+        let mut g = [0.0; ORDER];
+        for i in 0..HALF {
+            let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+            g[2 * i] = sign * even[i];
+            g[2 * i + 1] = -sign * odd[i];
+        }
+        g[0] += self.p.c0;
+        g
+    }
+
+    /// The model of the piece `s ∈ [c - ρ, c + ρ]` of the top-level interval
+    /// centred at `m`, and what it certifies (module docs, tests (E), (M), (C)).
+    fn classify(&self, g: &Coeffs, m: f64, c: f64, rho: f64) -> (Class, Piece) {
+        let e = shift(g, c, rho);
+        // rounding of the shift (module docs, (R4)): Σ_i i^l err_i ≤ γ ρ^l G_l
+        let gamma = SAFETY * (2 * ORDER + 4) as f64 * EPS;
+        let horner = SAFETY * 2.0 * ORDER as f64 * EPS;
+        let (mut g0, mut g1, mut g2) = (0.0, 0.0, 0.0);
+        let (mut s0, mut s1, mut s2) = (0.0, 0.0, 0.0);
+        for i in 0..ORDER {
+            let fi = i as f64;
+            let (x, y) = (e[i].abs(), g[i].abs());
+            g0 += y;
+            g1 += fi * y;
+            g2 += fi * (fi - 1.0) * y;
+            if i >= 1 {
+                s0 += x;
+            }
+            if i >= 2 {
+                s1 += fi * x;
+            }
+            if i >= 3 {
+                s2 += fi * (fi - 1.0) * x;
+            }
+        }
+        let (t0, t1, t2) = (gamma * g0, gamma * rho * g1, gamma * rho * rho * g2);
+        let [d0, d1, d2] = self.delta;
+        let (e0, e1, e2) = (e[0].abs(), e[1].abs(), 2.0 * e[2].abs());
+        let unc0 = d0 + t0 + horner * (e0 + s0);
+        let unc1 = rho * d1 + t1 + horner * (e1 + s1);
+        let unc2 = rho * rho * d2 + t2 + horner * (e2 + s2);
+        let piece = Piece {
+            centre: m + self.r * c,
+            half: self.r * rho,
+            e,
+            unc0,
+            unc1,
+        };
+        let class = if e0 - s0 > unc0 {
+            Class::Excluded
+        } else if e1 - s1 > unc1 {
+            Class::Monotone
+        } else if e2 - s2 > unc2 {
+            Class::Convex {
+                mu_u: e2 - s2 - unc2,
+            }
+        } else {
+            Class::Undecided
+        };
+        (class, piece)
+    }
+
+    /// Sign of `p` at `θ`: from the model value `q` if `|q| > unc`, else from
+    /// a full evaluation if that is above `η`; `0.0` at rounding level.
+    fn sign_at(&self, q: f64, unc: f64, theta: f64) -> f64 {
+        if q.abs() > unc {
+            return q.signum();
+        }
+        let v = self.p.eval(theta);
+        if v.abs() > self.eta { v.signum() } else { 0.0 }
+    }
+
+    /// A root at rounding level near `theta`: Newton on `p`, kept if it
+    /// reaches `|p| ≤ η + |p'| ulp`.
+    fn try_newton(&self, theta: f64, out: &mut Vec<f64>) {
+        let t = self.p.newton(theta);
+        if self.p.is_zero_at(t, self.eta) {
+            out.push(t);
+        }
+    }
+
+    /// The root of `p` in `[lo, hi]` (signs `s_lo`, `-s_lo` at the ends,
+    /// monotone between), from a model estimate `guess`.
+    fn solve(&self, lo: f64, hi: f64, s_lo: f64, guess: f64) -> f64 {
+        bracketed(|t| self.p.eval_with_derivative(t), lo, hi, s_lo, guess)
+    }
+
+    /// A piece where `p` is strictly monotone (test (M)): one root if the
+    /// signs at its ends differ, a rounding-level candidate at an end where
+    /// `p` is at rounding level, else none.
+    fn resolve_monotone(&self, piece: &Piece, out: &mut Vec<f64>) {
+        let (lo, hi) = (piece.theta(-1.0), piece.theta(1.0));
+        let qa = horner(&piece.e, -1.0).0;
+        let qb = horner(&piece.e, 1.0).0;
+        let sa = self.sign_at(qa, piece.unc0, lo);
+        let sb = self.sign_at(qb, piece.unc0, hi);
+        if sa * sb < 0.0 {
+            let u = bracketed(|u| horner(&piece.e, u), -1.0, 1.0, sa, 0.0);
+            out.push(self.solve(lo, hi, sa, piece.theta(u)));
+            return;
+        }
+        if sa == 0.0 {
+            self.try_newton(lo, out);
+        }
+        if sb == 0.0 {
+            self.try_newton(hi, out);
+        }
+    }
+
+    /// A piece where `p''` keeps its sign (test (C)): `p` has one extremum
+    /// `θ_c` (or none, then it is monotone) and at most one root on each side.
+    fn resolve_convex(&self, piece: &Piece, mu_u: f64, out: &mut Vec<f64>) {
+        let (lo, hi) = (piece.theta(-1.0), piece.theta(1.0));
+        let da = horner(&piece.e, -1.0).1;
+        let db = horner(&piece.e, 1.0).1;
+        let (known_a, known_b) = (da.abs() > piece.unc1, db.abs() > piece.unc1);
+        if known_a && known_b && da.signum() == db.signum() {
+            // p' keeps its sign: p is monotone on the piece
+            self.resolve_monotone(piece, out);
+            return;
+        }
+        // the critical point: model estimate, then Newton on p'
+        let uc = if da.signum() != db.signum() {
+            bracketed(|u| horner2(&piece.e, u), -1.0, 1.0, da.signum(), 0.0)
+        } else if da.abs() < db.abs() {
+            -1.0
+        } else {
+            1.0
+        };
+        let tc = self.critical_point(piece.theta(uc), lo, hi);
+        let (pc, dpc) = self.p.eval_with_derivative(tc);
+        if pc.abs() <= self.eta {
+            // extremum at rounding level: a tangency, reported once
+            out.push(tc);
+            return;
+        }
+        // second-order bound: min over the piece of σ p ≥ σ p(θ_c) - p'(θ_c)²/(2μ)
+        let sigma = piece.e[2].signum();
+        let mu = mu_u / (piece.half * piece.half);
+        let shortfall = (dpc.abs() + self.eta1).powi(2) / (2.0 * mu);
+        if sigma * pc > self.eta + shortfall {
+            return;
+        }
+        // p(θ_c) is clearly nonzero: at most one root on each side of θ_c
+        let sc = pc.signum();
+        for u_end in [-1.0, 1.0] {
+            let end = piece.theta(u_end);
+            let q_end = horner(&piece.e, u_end).0;
+            let s_end = self.sign_at(q_end, piece.unc0, end);
+            if s_end == -sc {
+                let (ul, uh) = if u_end < uc { (u_end, uc) } else { (uc, u_end) };
+                let s_low = if u_end < uc { s_end } else { sc };
+                let u = bracketed(|u| horner(&piece.e, u), ul, uh, s_low, 0.5 * (ul + uh));
+                let (tl, th) = if end < tc { (end, tc) } else { (tc, end) };
+                out.push(self.solve(tl, th, s_low, piece.theta(u)));
+            } else if s_end == 0.0 {
+                self.try_newton(end, out);
+            }
+        }
+    }
+
+    /// Newton on `p'` from `theta`, kept inside `[lo, hi]`.
+    fn critical_point(&self, theta: f64, lo: f64, hi: f64) -> f64 {
+        let mut x = theta;
+        for _ in 0..NEWTON_ITERS {
+            let (_, d1, d2) = self.p.eval_with_two_derivatives(x);
+            let next = (x - d1 / d2).clamp(lo, hi);
+            if !next.is_finite() {
+                break;
+            }
+            let done = (next - x).abs() <= 2.0 * EPS * x.abs().max(1.0);
+            x = next;
+            if done {
+                break;
+            }
+        }
+        x
+    }
+
+    /// Pieces narrower than [`FLOOR`] without a certificate (a root of
+    /// multiplicity three or more, or `p`, `p'`, `p''` all at model-error
+    /// level), joined into clusters: a root for each certified sign change
+    /// between samples, and the sample of smallest `|p|` if it is at rounding
+    /// level.
+    fn resolve_clusters(&self, mut pieces: Vec<(f64, f64)>, out: &mut Vec<f64>) {
+        pieces.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let mut clusters: Vec<(f64, f64)> = Vec::new();
+        for (lo, hi) in pieces {
+            match clusters.last_mut() {
+                Some(last) if lo <= last.1 => last.1 = last.1.max(hi),
+                _ => clusters.push((lo, hi)),
+            }
+        }
+        for (lo, hi) in clusters {
+            let samples: Vec<(f64, f64)> = (0..=CLUSTER_SAMPLES)
+                .map(|i| {
+                    let t = lo + (hi - lo) * i as f64 / CLUSTER_SAMPLES as f64;
+                    (t, self.p.eval(t))
+                })
+                .collect();
+            for w in samples.windows(2) {
+                let ((t0, v0), (t1, v1)) = (w[0], w[1]);
+                if v0.abs() > self.eta && v1.abs() > self.eta && v0.signum() != v1.signum() {
+                    out.push(self.solve(t0, t1, v0.signum(), 0.5 * (t0 + t1)));
+                }
+            }
+            if let Some(&(t, _)) = samples
+                .iter()
+                .min_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
+            {
+                self.try_newton(t, out);
+            }
+        }
+    }
+}
+
+/// Coefficients of `u ↦ q(c + ρ u)` for `q(s) = Σ g_j s^j`: Taylor shift by
+/// repeated synthetic division (Horner), then scaling by powers of `ρ`
+/// (exact: `ρ` is a power of two).
+fn shift(g: &Coeffs, c: f64, rho: f64) -> Coeffs {
+    let mut e = *g;
+    if c != 0.0 {
+        for i in 0..ORDER - 1 {
+            for j in (i..ORDER - 1).rev() {
+                e[j] += c * e[j + 1];
+            }
+        }
+    }
+    let mut w = 1.0;
+    for x in e.iter_mut() {
+        *x *= w;
+        w *= rho;
+    }
+    e
+}
+
+/// `(q(u), q'(u))` by Horner's rule.
+fn horner(e: &Coeffs, u: f64) -> (f64, f64) {
+    let (mut v, mut d) = (0.0, 0.0);
+    for &x in e.iter().rev() {
+        d = d * u + v;
+        v = v * u + x;
+    }
+    (v, d)
+}
+
+/// `(q'(u), q''(u))` by Horner's rule.
+fn horner2(e: &Coeffs, u: f64) -> (f64, f64) {
+    let (mut v, mut d, mut dd) = (0.0, 0.0, 0.0);
+    for &x in e.iter().rev() {
+        dd = dd * u + 2.0 * d;
+        d = d * u + v;
+        v = v * u + x;
+    }
+    (d, dd)
+}
+
+/// Zero of `f` on `[lo, hi]` where `f(lo)` has the sign `sign_lo` and `f(hi)`
+/// the opposite one: Newton from `x0`, bisection whenever a step would leave
+/// the shrinking bracket or is not at least halving the step before last
+/// (rtsafe). Returns the iterate of smallest `|f|`.
+fn bracketed(f: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64, sign_lo: f64, x0: f64) -> f64 {
+    let (mut lo, mut hi) = (lo, hi);
+    let mut x = if x0 > lo && x0 < hi {
+        x0
+    } else {
+        0.5 * (lo + hi)
+    };
+    let mut best = (x, f64::INFINITY);
+    let (mut step, mut step_before) = (hi - lo, hi - lo);
+    for _ in 0..MAX_ITERS {
+        let (fx, dfx) = f(x);
+        if fx.abs() < best.1 {
+            best = (x, fx.abs());
+        }
+        if fx == 0.0 || fx.is_nan() {
+            break;
+        }
+        if fx * sign_lo > 0.0 {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        let tol = 2.0 * EPS * x.abs().max(1.0);
+        if (fx / dfx).abs() <= tol {
+            break;
+        }
+        let newton = x - fx / dfx;
+        let next = if newton > lo && newton < hi && (2.0 * fx).abs() <= (step_before * dfx).abs() {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        (step_before, step) = (step, next - x);
+        if step.abs() <= tol {
+            break;
+        }
+        x = next;
+    }
+    best.0
+}
