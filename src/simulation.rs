@@ -660,7 +660,10 @@ fn simulate_timed<E: PeriodEngine>(
         event_log.map(|l| l.events.into_iter().filter(|e| e.period <= span).collect());
     // Events of the start-up beyond the log's capacity: counted, not kept.
     let event_log_omitted = event_log.as_ref().map_or(0, |l| {
-        transient.events(span).total().saturating_sub(l.len() as u64)
+        transient
+            .events(span)
+            .total()
+            .saturating_sub(l.len() as u64)
     });
     let simulation_time = clock.elapsed();
     Ok(Outcome::Steady(Box::new(RunReport {

@@ -206,7 +206,11 @@ fn verification_changes_no_reported_value() {
 
 /// Row of a CSV file by column name.
 fn csv_row(path: &Path) -> HashMap<String, String> {
-    let mut reader = csv::Reader::from_path(path).unwrap();
+    // The first line is the `# stickslip_version = ...` header comment.
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .from_path(path)
+        .unwrap();
     let headers = reader.headers().unwrap().clone();
     let record = reader.records().next().unwrap().unwrap();
     headers

@@ -13,9 +13,9 @@ const BIN: &str = env!("CARGO_BIN_EXE_stickslip");
 /// 2 levels x 3 n = 6 cases of the default scene's motor.
 const SMALL: &str = "[axes]\nlevel = [3, 6]\nharmonics = [2, 3, 4]\n";
 
-/// 16 cases of about 0.1 s each on one thread (n = 40 harmonics): slow
-/// enough to be interrupted between cases.
-const SLOW: &str = "[axes]\nlevel = [12]\nharmonics = [40]\nmu_static = [0.180, 0.181, 0.182, 0.183, 0.184, 0.185, 0.186, 0.187, 0.188, 0.189, 0.190, 0.191, 0.192, 0.193, 0.194, 0.195]\n[outputs]\nindicators = [\"v_inf\"]\n";
+/// Sixteen cases of a fraction of a second each: `kappa = 1e6` needs a
+/// start-up of the order of `kappa` periods.
+const SLOW: &str = "[axes]\nkappa = [1e6]\nharmonics = [2]\nmu_static = [0.180, 0.181, 0.182, 0.183, 0.184, 0.185, 0.186, 0.187, 0.188, 0.189, 0.190, 0.191, 0.192, 0.193, 0.194, 0.195]\n[outputs]\nindicators = [\"v_inf\"]\n";
 
 fn dir(name: &str) -> PathBuf {
     let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
@@ -245,11 +245,12 @@ fn an_interrupted_sweep_keeps_its_rows_and_a_rerun_completes_it() {
 #[test]
 fn an_interrupted_run_or_check_leaves_no_file() {
     let d = dir("interrupt_run");
-    // n = 128: a few seconds per run.
+    // kappa = 1e7: the start-up from rest takes of the order of kappa
+    // periods (docs/interface.md, plausibility warnings), many seconds.
     let scene = write(
         &d,
         "slow.toml",
-        "[signal]\nkind = \"fourier\"\nstroke = 25e-6\nsqrt_kappa = 0.09375\nharmonics = 128\nsigma = true\n",
+        "[signal]\nkind = \"fourier\"\nstroke = 25e-6\nkappa = 1e7\nharmonics = 2\nsigma = true\n\n[run]\nmax_periods = 100000000\n",
     );
     let out = d.join("out.json");
     for args in [
