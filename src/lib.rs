@@ -20,8 +20,10 @@
 
 pub mod check;
 pub mod cli;
+pub mod compare;
 pub mod engine;
 pub mod error;
+pub mod export;
 pub mod indicators;
 pub mod motor;
 pub mod observer;

@@ -11,7 +11,9 @@
 //! * output files are written atomically (all or nothing).
 
 mod check;
+mod compare;
 mod run;
+mod signal;
 mod sweep;
 
 use clap::{Parser, Subcommand};
@@ -42,6 +44,10 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Join sweep outputs (shards) into one file, sorted by case.
     Merge(sweep::MergeArgs),
+    /// Print the rod signal exactly as simulated (text, JSON, MATLAB, Python).
+    Signal(signal::SignalArgs),
+    /// Compare a user's fixed-step results (CSV, MAT) with the exact solution.
+    Compare(compare::CompareArgs),
 }
 
 /// The output and error streams of one invocation.
@@ -86,6 +92,8 @@ where
         Some(Command::Check(args)) => check::check(args, streams),
         Some(Command::Sweep(args)) => sweep::sweep(args, streams),
         Some(Command::Merge(args)) => sweep::merge(args, streams),
+        Some(Command::Signal(args)) => signal::signal(args, streams),
+        Some(Command::Compare(args)) => return compare::compare(args, streams),
     };
     match outcome {
         Ok(()) => 0,
