@@ -410,3 +410,93 @@ pub fn periods_table(periods: &[PeriodRecord], json_lines: bool) -> String {
         .collect();
     table(&PERIOD_COLUMNS, rows, json_lines)
 }
+
+/// What `run --trajectory` / `--periods-series` asks for.
+#[derive(Debug, Clone, Default)]
+pub struct TrajectoryRequest {
+    /// Write the states here.
+    pub trajectory: Option<std::path::PathBuf>,
+    /// Sample times (s), one a line or a CSV column `t`.
+    pub times: Option<std::path::PathBuf>,
+    /// Or a sample rate (Hz) over `periods`.
+    pub sample_rate: Option<f64>,
+    /// Periods `A..=B` for `sample_rate`.
+    pub periods: Option<(u64, u64)>,
+    /// Write the per-period series of the start-up here.
+    pub periods_series: Option<std::path::PathBuf>,
+}
+
+impl TrajectoryRequest {
+    /// True if anything is asked for.
+    pub fn any(&self) -> bool {
+        self.trajectory.is_some() || self.periods_series.is_some()
+    }
+}
+
+/// Writes what `request` asks for, for `scene`; the per-period series
+/// covers the start-up to `p_0.99` (or the last sampled period, if later).
+pub fn write_requested(scene: &crate::Scene, request: &TrajectoryRequest) -> Result<(), String> {
+    use crate::compare::exact;
+    let (signal, motor) = crate::simulation::build(scene).map_err(|e| e.to_string())?;
+    let period = signal.period();
+    let times: Vec<f64> = match (&request.trajectory, &request.times, request.sample_rate) {
+        (None, _, _) => Vec::new(),
+        (Some(_), Some(path), None) => {
+            let options = crate::compare::read::ReadOptions::default();
+            crate::compare::read::read_times(path, &options).map_err(|e| e.to_string())?
+        }
+        (Some(_), None, Some(rate)) => {
+            if !(rate > 0.0 && rate.is_finite()) {
+                return Err(format!("--sample-rate = {rate}: must be a positive number"));
+            }
+            let (a, b) = request.periods.unwrap_or((1, 1));
+            let (t0, t1) = ((a - 1) as f64 * period, b as f64 * period);
+            let n = ((t1 - t0) * rate).floor() as u64;
+            if n > 100_000_000 {
+                return Err(format!(
+                    "--sample-rate = {rate}: {n} samples over periods {a}..{b} is too many (at most 1e8)"
+                ));
+            }
+            (0..=n)
+                .map(|i| t0 + i as f64 / rate)
+                .filter(|t| *t <= t1)
+                .collect()
+        }
+        (Some(_), Some(_), Some(_)) => {
+            return Err("give either --times or --sample-rate, not both".to_owned());
+        }
+        (Some(_), None, None) => {
+            return Err("--trajectory needs --times FILE or --sample-rate HZ".to_owned());
+        }
+    };
+    let max = scene.run.max_periods;
+    if let Some(&last) = times.last()
+        && last > max as f64 * period
+    {
+        return Err(format!(
+            "time {last} s is after the simulated span of run.max_periods = {max} periods"
+        ));
+    }
+    let startup = if request.periods_series.is_some() {
+        let mut exact_scene = scene.clone();
+        exact_scene.run.engine = crate::scene::EngineKind::Event;
+        crate::simulation::run(&exact_scene)
+            .map_err(|e| e.to_string())?
+            .startup_periods
+            .unwrap_or(1)
+    } else {
+        0
+    };
+    let series = exact::evaluate(&signal, &motor, &times, startup).map_err(|e| e.to_string())?;
+    if let Some(path) = &request.trajectory {
+        let text = trajectory_table(&series.states, is_json_lines(path));
+        crate::output::write_atomically(path, text.as_bytes())
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    }
+    if let Some(path) = &request.periods_series {
+        let text = periods_table(&series.periods, is_json_lines(path));
+        crate::output::write_atomically(path, text.as_bytes())
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    }
+    Ok(())
+}

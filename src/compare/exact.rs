@@ -96,7 +96,7 @@ impl<'s> Walker<'s> {
             .iter()
             .filter(|s| s.mode == Mode::Stick)
             .map(Segment::duration)
-            .sum();
+            .fold(0.0, |a, b| a + b);
         let x_start = self.position.value();
         self.position.add(end.step);
         self.start = PeriodStart {

@@ -282,6 +282,99 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<UserData, CompareError
     Ok(data)
 }
 
+/// Reads only sample times (s): a CSV or MAT-file with a time column or
+/// variable (`t`, `time`), or a text file with one time per line.
+pub fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>, CompareError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path);
+    let headerless = text.as_ref().is_ok_and(|t| {
+        t.lines()
+            .find(|l| !l.trim().is_empty() && !l.starts_with('#'))
+            .is_some_and(|l| l.trim().parse::<f64>().is_ok())
+    });
+    let mut values = Vec::new();
+    if headerless {
+        for (i, line) in text.unwrap_or_default().lines().enumerate() {
+            let cell = line.trim();
+            if cell.is_empty() || cell.starts_with('#') {
+                continue;
+            }
+            let v: f64 = cell.parse().map_err(|_| {
+                CompareError::data(
+                    &file,
+                    Some("t"),
+                    Some(format!("line {}", i + 1)),
+                    format!("`{cell}` is not a number"),
+                )
+            })?;
+            values.push(v * options.time_unit.factor());
+        }
+        let data = UserData {
+            t: Some(Column {
+                name: "t".into(),
+                values,
+            }),
+            v_p: Some(Column {
+                name: "t".into(),
+                values: Vec::new(),
+            }),
+            ..Default::default()
+        };
+        validate(&data, &file, &Origin::Csv, &[], &[])?;
+        return Ok(data.t.map(|c| c.values).unwrap_or_default());
+    }
+    let mut names = options.clone();
+    names.names = Default::default();
+    let (columns, lines, origin) = if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mat"))
+    {
+        (read_mat(path, &file)?, Vec::new(), Origin::Mat)
+    } else {
+        let (c, l) = read_csv(path, &file)?;
+        (c, l, Origin::Csv)
+    };
+    let Some((name, raw)) = Quantity::Time
+        .default_names()
+        .iter()
+        .find_map(|n| columns.iter().find(|(c, _)| c.eq_ignore_ascii_case(n)))
+    else {
+        return Err(CompareError::data(
+            &file,
+            Some("t"),
+            None,
+            "no such column or variable".to_owned(),
+        ));
+    };
+    let raw = raw
+        .as_ref()
+        .map_err(|r| CompareError::data(&file, Some(name), None, r.clone()))?;
+    for (i, v) in raw.iter().enumerate() {
+        if !v.is_finite() {
+            return Err(CompareError::data(
+                &file,
+                Some(name),
+                Some(origin.row(i, &lines)),
+                format!("{v} is not a finite number"),
+            ));
+        }
+        values.push(v * options.time_unit.factor());
+    }
+    let data = UserData {
+        t: Some(Column {
+            name: name.clone(),
+            values,
+        }),
+        v_p: Some(Column {
+            name: name.clone(),
+            values: Vec::new(),
+        }),
+        ..Default::default()
+    };
+    validate(&data, &file, &origin, &lines, &columns)?;
+    Ok(data.t.map(|c| c.values).unwrap_or_default())
+}
+
 fn index(q: Quantity) -> usize {
     Quantity::ALL.iter().position(|x| *x == q).unwrap_or(0)
 }
