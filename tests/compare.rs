@@ -47,7 +47,7 @@ fn fixture_v_inf(name: &str) -> f64 {
     let col = header.iter().position(|h| *h == "v_p").unwrap();
     lines
         .filter_map(|l| l.split(',').nth(col).filter(|c| !c.is_empty()))
-        .last()
+        .next_back()
         .unwrap()
         .parse()
         .unwrap()

@@ -58,7 +58,7 @@ pub fn fit(steps: &[f64], errors: &[f64], tolerance: f64) -> OrderFit {
         ));
         return fit;
     }
-    if errors.iter().any(|e| !(*e > 0.0)) {
+    if errors.iter().any(|e| e.is_nan() || *e <= 0.0) {
         fit.reason = Some("an error is zero: no logarithm to fit".to_owned());
         return fit;
     }

@@ -29,7 +29,7 @@ use super::CompareError;
 use std::path::Path;
 
 /// A column as read: its name and its values, or why it cannot be used.
-type RawColumn = (String, Result<Vec<f64>, String>);
+type RawColumn = (String, Result<Vec<f64>, (Option<String>, String)>);
 
 /// Unit of the time values in a user's file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
@@ -219,7 +219,11 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<UserData, CompareError
     let (columns, lines, origin) = if is_mat {
         (read_mat(path, &file)?, Vec::new(), Origin::Mat)
     } else {
-        let (c, l) = read_csv(path, &file)?;
+        let wanted: Vec<String> = Quantity::ALL
+            .iter()
+            .flat_map(|q| options.names(*q))
+            .collect();
+        let (c, l) = read_csv(path, &file, &wanted)?;
         (c, l, Origin::Csv)
     };
     let mut data = UserData::default();
@@ -241,9 +245,9 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<UserData, CompareError
                 format!("no such {}", if is_mat { "variable" } else { "column" }),
             ));
         };
-        let raw = raw
-            .as_ref()
-            .map_err(|reason| CompareError::data(&file, Some(name), None, reason.clone()))?;
+        let raw = raw.as_ref().map_err(|(row, reason)| {
+            CompareError::data(&file, Some(name), row.clone(), reason.clone())
+        })?;
         let factor = q.factor(options.time_unit, options.length_unit);
         let mut values = Vec::with_capacity(raw.len());
         for (i, v) in raw.iter().enumerate() {
@@ -323,15 +327,18 @@ pub fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>, Compar
         validate(&data, &file, &Origin::Csv, &[], &[])?;
         return Ok(data.t.map(|c| c.values).unwrap_or_default());
     }
-    let mut names = options.clone();
-    names.names = Default::default();
     let (columns, lines, origin) = if path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("mat"))
     {
         (read_mat(path, &file)?, Vec::new(), Origin::Mat)
     } else {
-        let (c, l) = read_csv(path, &file)?;
+        let wanted: Vec<String> = Quantity::Time
+            .default_names()
+            .iter()
+            .map(|n| (*n).to_owned())
+            .collect();
+        let (c, l) = read_csv(path, &file, &wanted)?;
         (c, l, Origin::Csv)
     };
     let Some((name, raw)) = Quantity::Time
@@ -348,7 +355,7 @@ pub fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>, Compar
     };
     let raw = raw
         .as_ref()
-        .map_err(|r| CompareError::data(&file, Some(name), None, r.clone()))?;
+        .map_err(|(row, r)| CompareError::data(&file, Some(name), row.clone(), r.clone()))?;
     for (i, v) in raw.iter().enumerate() {
         if !v.is_finite() {
             return Err(CompareError::data(
@@ -486,7 +493,13 @@ fn validate(
 
 /// The columns of a CSV file (name, raw values) and the file line of every
 /// data row.
-fn read_csv(path: &Path, file: &str) -> Result<(Vec<RawColumn>, Vec<usize>), CompareError> {
+/// Only columns named in `wanted` (case-insensitive) are parsed; the others
+/// are returned empty.
+fn read_csv(
+    path: &Path,
+    file: &str,
+    wanted: &[String],
+) -> Result<(Vec<RawColumn>, Vec<usize>), CompareError> {
     let mut reader = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
         .trim(csv::Trim::All)
@@ -507,8 +520,11 @@ fn read_csv(path: &Path, file: &str) -> Result<(Vec<RawColumn>, Vec<usize>), Com
             "no header row with column names".to_owned(),
         ));
     }
-    let mut columns: Vec<(String, Vec<f64>)> =
-        header.iter().map(|n| (n.clone(), Vec::new())).collect();
+    let mut columns: Vec<RawColumn> = header.iter().map(|n| (n.clone(), Ok(Vec::new()))).collect();
+    let parse: Vec<bool> = header
+        .iter()
+        .map(|n| wanted.iter().any(|w| w.eq_ignore_ascii_case(n)))
+        .collect();
     // Row index at which each column ended (its first empty cell).
     let mut ended: Vec<Option<usize>> = vec![None; header.len()];
     let mut lines = Vec::new();
@@ -523,41 +539,38 @@ fn read_csv(path: &Path, file: &str) -> Result<(Vec<RawColumn>, Vec<usize>), Com
         let line = record.position().map_or(0, |p| p.line() as usize);
         lines.push(line);
         for (j, cell) in record.iter().enumerate() {
-            let name = &header[j];
+            if !parse[j] {
+                continue;
+            }
+            // A column that cannot be read is an error only if it is used.
+            let Ok(values) = &mut columns[j].1 else {
+                continue;
+            };
+            let at = Some(format!("row {} (line {line})", row + 1));
             if cell.is_empty() {
                 ended[j].get_or_insert(row);
                 continue;
             }
             if let Some(end) = ended[j] {
-                return Err(CompareError::data(
-                    file,
-                    Some(name),
-                    Some(format!("row {} (line {line})", row + 1)),
+                columns[j].1 = Err((
+                    at,
                     format!(
                         "a value after the empty cell of row {}: a column may only end \
                          early, not have gaps",
                         end + 1
                     ),
                 ));
+                continue;
             }
-            let value: f64 = cell.parse().map_err(|_| {
-                CompareError::data(
-                    file,
-                    Some(name),
-                    Some(format!("row {} (line {line})", row + 1)),
-                    format!("`{cell}` is not a number"),
-                )
-            })?;
-            columns[j].1.push(value);
+            match cell.parse::<f64>() {
+                Ok(v) => values.push(v),
+                Err(_) => columns[j].1 = Err((at, format!("`{cell}` is not a number"))),
+            }
         }
         row += 1;
     }
-    Ok((
-        columns.into_iter().map(|(n, v)| (n, Ok(v))).collect(),
-        lines,
-    ))
+    Ok((columns, lines))
 }
-
 /// The variables of a MAT-file (name, values, or why the variable is not a
 /// real numeric vector; that is an error only when the variable is used).
 fn read_mat(path: &Path, file: &str) -> Result<Vec<RawColumn>, CompareError> {
@@ -581,11 +594,12 @@ fn read_mat(path: &Path, file: &str) -> Result<Vec<RawColumn>, CompareError> {
                 .collect::<Vec<_>>()
                 .join("x");
             let values = match to_f64(array.data()) {
-                None => Err(format!(
-                    "is a complex {shape} array, not a real numeric vector"
+                None => Err((
+                    None,
+                    format!("is a complex {shape} array, not a real numeric vector"),
                 )),
                 Some(_) if size.iter().filter(|&&n| n > 1).count() > 1 => {
-                    Err(format!("is a {shape} array, not a vector"))
+                    Err((None, format!("is a {shape} array, not a vector")))
                 }
                 Some(v) => Ok(v),
             };
