@@ -309,7 +309,6 @@ pub fn compare(
     let run = simulation::run(&exact_scene)?;
     let v_inf = run.indicators.v_inf;
     let description = SignalDescription::new(&scene.signal, &signal, &motor);
-    let period = signal.period();
     let max_periods = scene.run.max_periods;
     let mut reports = Vec::new();
     for path in files {
@@ -356,7 +355,6 @@ pub fn compare(
     } else {
         Vec::new()
     };
-    let _ = period;
     Ok(Report {
         signal: description,
         v_inf,
