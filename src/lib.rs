@@ -21,8 +21,10 @@
 pub mod budget;
 pub mod check;
 pub mod cli;
+pub mod compare;
 pub mod engine;
 pub mod error;
+pub mod export;
 pub mod indicators;
 pub mod interrupt;
 pub mod motor;

@@ -27,7 +27,9 @@
 //!   temporary file.
 
 mod check;
+mod compare;
 mod run;
+mod signal;
 mod sweep;
 
 use clap::{Args, Parser, Subcommand};
@@ -59,6 +61,10 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Join sweep outputs (shards) into one file, sorted by case.
     Merge(sweep::MergeArgs),
+    /// Print the rod signal exactly as simulated (text, JSON, MATLAB, Python).
+    Signal(signal::SignalArgs),
+    /// Compare a user's fixed-step results (CSV, MAT) with the exact solution.
+    Compare(compare::CompareArgs),
 }
 
 /// The output and error streams of one invocation.
@@ -106,6 +112,8 @@ where
         Some(Command::Check(args)) => check::check(args, streams).map(|()| 0),
         Some(Command::Sweep(args)) => sweep::sweep(args, streams),
         Some(Command::Merge(args)) => sweep::merge(args, streams).map(|()| 0),
+        Some(Command::Signal(args)) => signal::signal(args, streams).map(|()| 0),
+        Some(Command::Compare(args)) => return compare::compare(args, streams),
     };
     match outcome {
         Ok(code) => code,

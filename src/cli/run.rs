@@ -20,6 +20,32 @@ pub(crate) struct RunArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     options: SceneOptions,
+    /// Exact trajectory export (`--trajectory`, `--times`, `--sample-rate`,
+    /// `--periods`, `--periods-series`; docs/interface.md).
+    #[command(flatten)]
+    export: ExportArgs,
+}
+
+/// Flags of the exact trajectory export (implemented in [`crate::export`]).
+#[derive(Args, Default)]
+pub(crate) struct ExportArgs {
+    /// Write x_R, v_R, a_R, x_S, v_S, mode at the sample times to FILE
+    /// (CSV, or JSON lines for .jsonl).
+    #[arg(long, value_name = "FILE")]
+    trajectory: Option<PathBuf>,
+    /// Sample times for --trajectory: one per line, or a CSV/MAT column t.
+    #[arg(long, value_name = "FILE")]
+    times: Option<PathBuf>,
+    /// Sample rate for --trajectory (Hz), over --periods.
+    #[arg(long, value_name = "HZ")]
+    sample_rate: Option<f64>,
+    /// Periods A..B sampled with --sample-rate (default 1..1).
+    #[arg(long, value_name = "A..B", value_parser = super::compare::parse_range)]
+    periods: Option<(u64, u64)>,
+    /// Write the per-period series p, v_p, x_p, stick time, events of the
+    /// start-up to FILE (CSV, or JSON lines for .jsonl).
+    #[arg(long, value_name = "FILE")]
+    periods_series: Option<PathBuf>,
 }
 
 /// A scene file, or the built-in default scene.
@@ -31,11 +57,29 @@ pub(crate) fn load(path: Option<&Path>) -> Result<Scene, Failure> {
 }
 
 pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
-    if let (Some(output), Some(scene)) = (&args.output, &args.scene) {
-        refuse_output_over_input(output, &[scene])?;
+    let e = args.export;
+    if let Some(scene) = &args.scene {
+        for output in [&args.output, &e.trajectory, &e.periods_series]
+            .into_iter()
+            .flatten()
+        {
+            let mut inputs = vec![scene.as_path()];
+            inputs.extend(e.times.as_deref());
+            refuse_output_over_input(output, &inputs)?;
+        }
     }
     let mut scene = load(args.scene.as_deref())?;
     args.options.apply(&mut scene, streams);
+    let request = crate::export::TrajectoryRequest {
+        trajectory: e.trajectory,
+        times: e.times,
+        sample_rate: e.sample_rate,
+        periods: e.periods,
+        periods_series: e.periods_series,
+    };
+    if request.any() {
+        crate::export::write_requested(&scene, &request)?;
+    }
     let outcome = simulation::simulate(&scene).map_err(|e| e.to_string())?;
     let text = if args.json {
         let mut text = serde_json::to_string_pretty(&report::to_json(&outcome, &scene))

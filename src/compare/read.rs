@@ -1,0 +1,634 @@
+//! Reading a user's result: CSV files (columns by name in a header row)
+//! and MATLAB Level 5 MAT-files (variables by name, compressed or not).
+//!
+//! The quantities and the names they are found under (case-insensitive,
+//! the first name present wins; `--var-*` options replace the list):
+//!
+//! | quantity | names | unit |
+//! | --- | --- | --- |
+//! | time | `t`, `time` | s (or `--time-unit`) |
+//! | slider position | `x_S`, `x` | m (or `--length-unit`) |
+//! | slider velocity | `v_S`, `v` | length unit / time unit |
+//! | rod position | `x_R` | length unit |
+//! | period index | `p` | 1 |
+//! | mean velocity per period | `v_p` | length unit / time unit |
+//!
+//! A CSV column may end early (empty cells below its last value), so that
+//! one file holds the samples and the shorter (or longer) per-period
+//! series, as two variables of different lengths do in a MAT-file. Lines
+//! starting with `#` are comments.
+//!
+//! Contract: every value returned is finite and in SI units; times are
+//! `>= 0` and strictly increasing; sample columns have as many values as
+//! the time column; period indices are increasing integers `>= 1`.
+//! Anything else is a [`CompareError::Data`] naming the file, the column
+//! and the row (CSV: the data row from 1, and the line in the file; MAT:
+//! the element from 1).
+
+use super::CompareError;
+use std::path::Path;
+
+/// A column as read: its name and its values, or why it cannot be used.
+type RawColumn = (String, Result<Vec<f64>, (Option<String>, String)>);
+
+/// Unit of the time values in a user's file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum TimeUnit {
+    /// Seconds.
+    #[default]
+    S,
+    /// Milliseconds.
+    Ms,
+    /// Microseconds.
+    Us,
+}
+
+impl TimeUnit {
+    /// Seconds per unit.
+    pub fn factor(self) -> f64 {
+        match self {
+            TimeUnit::S => 1.0,
+            TimeUnit::Ms => 1e-3,
+            TimeUnit::Us => 1e-6,
+        }
+    }
+}
+
+/// Unit of the lengths in a user's file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum LengthUnit {
+    /// Metres.
+    #[default]
+    M,
+    /// Millimetres.
+    Mm,
+    /// Micrometres.
+    Um,
+}
+
+impl LengthUnit {
+    /// Metres per unit.
+    pub fn factor(self) -> f64 {
+        match self {
+            LengthUnit::M => 1.0,
+            LengthUnit::Mm => 1e-3,
+            LengthUnit::Um => 1e-6,
+        }
+    }
+}
+
+/// The quantities a user's file may hold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// Time `t`.
+    Time,
+    /// Slider position `x_S`.
+    SliderPosition,
+    /// Slider velocity `v_S`.
+    SliderVelocity,
+    /// Rod position `x_R`.
+    RodPosition,
+    /// Period index `p`.
+    Period,
+    /// Mean velocity `v_p` of period `p`.
+    MeanVelocity,
+}
+
+impl Quantity {
+    /// All quantities, in reading order.
+    pub const ALL: [Quantity; 6] = [
+        Quantity::Time,
+        Quantity::SliderPosition,
+        Quantity::SliderVelocity,
+        Quantity::RodPosition,
+        Quantity::Period,
+        Quantity::MeanVelocity,
+    ];
+
+    /// The names the quantity is looked up under by default.
+    pub fn default_names(self) -> &'static [&'static str] {
+        match self {
+            Quantity::Time => &["t", "time"],
+            Quantity::SliderPosition => &["x_S", "x"],
+            Quantity::SliderVelocity => &["v_S", "v"],
+            Quantity::RodPosition => &["x_R"],
+            Quantity::Period => &["p"],
+            Quantity::MeanVelocity => &["v_p"],
+        }
+    }
+
+    /// SI value of one unit of the file's value.
+    fn factor(self, time: TimeUnit, length: LengthUnit) -> f64 {
+        match self {
+            Quantity::Time => time.factor(),
+            Quantity::SliderPosition | Quantity::RodPosition => length.factor(),
+            Quantity::SliderVelocity | Quantity::MeanVelocity => length.factor() / time.factor(),
+            Quantity::Period => 1.0,
+        }
+    }
+}
+
+/// How to read a file: units and, per quantity, a name that replaces the
+/// default list.
+#[derive(Debug, Clone, Default)]
+pub struct ReadOptions {
+    /// Unit of times.
+    pub time_unit: TimeUnit,
+    /// Unit of lengths.
+    pub length_unit: LengthUnit,
+    /// Name overrides in the order of [`Quantity::ALL`].
+    pub names: [Option<String>; 6],
+}
+
+impl ReadOptions {
+    fn names(&self, q: Quantity) -> Vec<String> {
+        let i = Quantity::ALL.iter().position(|x| *x == q).unwrap_or(0);
+        match &self.names[i] {
+            Some(name) => vec![name.clone()],
+            None => q.default_names().iter().map(|s| (*s).to_owned()).collect(),
+        }
+    }
+}
+
+/// One column of a user's data, in SI units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Column {
+    /// The name in the file.
+    pub name: String,
+    /// The values.
+    pub values: Vec<f64>,
+}
+
+/// A user's result, validated.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct UserData {
+    /// Sample times (s).
+    pub t: Option<Column>,
+    /// Slider positions at the sample times (m).
+    pub x_s: Option<Column>,
+    /// Slider velocities (m/s).
+    pub v_s: Option<Column>,
+    /// Rod positions (m).
+    pub x_r: Option<Column>,
+    /// Period indices of `v_p`.
+    pub p: Option<Column>,
+    /// Mean velocities per period (m/s).
+    pub v_p: Option<Column>,
+}
+
+impl UserData {
+    /// The fixed step of the time column: the median sample spacing (s).
+    pub fn step(&self) -> Option<f64> {
+        let t = &self.t.as_ref()?.values;
+        if t.len() < 2 {
+            return None;
+        }
+        let mut d: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+        let mid = d.len() / 2;
+        d.select_nth_unstable_by(mid, f64::total_cmp);
+        Some(d[mid])
+    }
+}
+
+/// Where a value sits, for messages.
+enum Origin {
+    Csv,
+    Mat,
+}
+
+impl Origin {
+    fn row(&self, i: usize, header_lines: &[usize]) -> String {
+        match self {
+            Origin::Csv => format!(
+                "row {} (line {})",
+                i + 1,
+                header_lines.get(i).copied().unwrap_or(0)
+            ),
+            Origin::Mat => format!("element {}", i + 1),
+        }
+    }
+}
+
+/// Reads a CSV or MAT-file (by extension: `.mat` is a MAT-file, anything
+/// else CSV).
+pub fn read(path: &Path, options: &ReadOptions) -> Result<UserData, CompareError> {
+    let is_mat = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mat"));
+    let file = path.display().to_string();
+    let (columns, lines, origin) = if is_mat {
+        (read_mat(path, &file)?, Vec::new(), Origin::Mat)
+    } else {
+        let wanted: Vec<String> = Quantity::ALL
+            .iter()
+            .flat_map(|q| options.names(*q))
+            .collect();
+        let (c, l) = read_csv(path, &file, &wanted)?;
+        (c, l, Origin::Csv)
+    };
+    let mut data = UserData::default();
+    for q in Quantity::ALL {
+        let names = options.names(q);
+        let found = names.iter().find_map(|n| {
+            columns
+                .iter()
+                .find(|(name, _)| name.eq_ignore_ascii_case(n))
+        });
+        let Some((name, raw)) = found else {
+            if matches!(q, Quantity::Time) || options.names[index(q)].is_none() {
+                continue;
+            }
+            return Err(CompareError::data(
+                &file,
+                names.first().map(String::as_str),
+                None,
+                format!("no such {}", if is_mat { "variable" } else { "column" }),
+            ));
+        };
+        let raw = raw.as_ref().map_err(|(row, reason)| {
+            CompareError::data(&file, Some(name), row.clone(), reason.clone())
+        })?;
+        let factor = q.factor(options.time_unit, options.length_unit);
+        let mut values = Vec::with_capacity(raw.len());
+        for (i, v) in raw.iter().enumerate() {
+            if !v.is_finite() {
+                return Err(CompareError::data(
+                    &file,
+                    Some(name),
+                    Some(origin.row(i, &lines)),
+                    format!("{v} is not a finite number"),
+                ));
+            }
+            values.push(v * factor);
+        }
+        let column = Some(Column {
+            name: name.clone(),
+            values,
+        });
+        match q {
+            Quantity::Time => data.t = column,
+            Quantity::SliderPosition => data.x_s = column,
+            Quantity::SliderVelocity => data.v_s = column,
+            Quantity::RodPosition => data.x_r = column,
+            Quantity::Period => data.p = column,
+            Quantity::MeanVelocity => data.v_p = column,
+        }
+    }
+    if options.names[0].is_some() && data.t.is_none() {
+        return Err(CompareError::data(
+            &file,
+            options.names[0].as_deref(),
+            None,
+            "no such column or variable".to_owned(),
+        ));
+    }
+    validate(&data, &file, &origin, &lines, &columns)?;
+    Ok(data)
+}
+
+/// Reads only sample times (s): a CSV or MAT-file with a time column or
+/// variable (`t`, `time`), or a text file with one time per line.
+pub fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>, CompareError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path);
+    let headerless = text.as_ref().is_ok_and(|t| {
+        t.lines()
+            .find(|l| !l.trim().is_empty() && !l.starts_with('#'))
+            .is_some_and(|l| l.trim().parse::<f64>().is_ok())
+    });
+    let mut values = Vec::new();
+    if headerless {
+        for (i, line) in text.unwrap_or_default().lines().enumerate() {
+            let cell = line.trim();
+            if cell.is_empty() || cell.starts_with('#') {
+                continue;
+            }
+            let v: f64 = cell.parse().map_err(|_| {
+                CompareError::data(
+                    &file,
+                    Some("t"),
+                    Some(format!("line {}", i + 1)),
+                    format!("`{cell}` is not a number"),
+                )
+            })?;
+            values.push(v * options.time_unit.factor());
+        }
+        let data = UserData {
+            t: Some(Column {
+                name: "t".into(),
+                values,
+            }),
+            v_p: Some(Column {
+                name: "t".into(),
+                values: Vec::new(),
+            }),
+            ..Default::default()
+        };
+        validate(&data, &file, &Origin::Csv, &[], &[])?;
+        return Ok(data.t.map(|c| c.values).unwrap_or_default());
+    }
+    let (columns, lines, origin) = if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mat"))
+    {
+        (read_mat(path, &file)?, Vec::new(), Origin::Mat)
+    } else {
+        let wanted: Vec<String> = Quantity::Time
+            .default_names()
+            .iter()
+            .map(|n| (*n).to_owned())
+            .collect();
+        let (c, l) = read_csv(path, &file, &wanted)?;
+        (c, l, Origin::Csv)
+    };
+    let Some((name, raw)) = Quantity::Time
+        .default_names()
+        .iter()
+        .find_map(|n| columns.iter().find(|(c, _)| c.eq_ignore_ascii_case(n)))
+    else {
+        return Err(CompareError::data(
+            &file,
+            Some("t"),
+            None,
+            "no such column or variable".to_owned(),
+        ));
+    };
+    let raw = raw
+        .as_ref()
+        .map_err(|(row, r)| CompareError::data(&file, Some(name), row.clone(), r.clone()))?;
+    for (i, v) in raw.iter().enumerate() {
+        if !v.is_finite() {
+            return Err(CompareError::data(
+                &file,
+                Some(name),
+                Some(origin.row(i, &lines)),
+                format!("{v} is not a finite number"),
+            ));
+        }
+        values.push(v * options.time_unit.factor());
+    }
+    let data = UserData {
+        t: Some(Column {
+            name: name.clone(),
+            values,
+        }),
+        v_p: Some(Column {
+            name: name.clone(),
+            values: Vec::new(),
+        }),
+        ..Default::default()
+    };
+    validate(&data, &file, &origin, &lines, &columns)?;
+    Ok(data.t.map(|c| c.values).unwrap_or_default())
+}
+
+fn index(q: Quantity) -> usize {
+    Quantity::ALL.iter().position(|x| *x == q).unwrap_or(0)
+}
+
+fn validate(
+    data: &UserData,
+    file: &str,
+    origin: &Origin,
+    lines: &[usize],
+    columns: &[RawColumn],
+) -> Result<(), CompareError> {
+    let samples = [&data.x_s, &data.v_s, &data.x_r];
+    let has_samples = samples.iter().any(|c| c.is_some());
+    if data.v_p.is_none() && !has_samples {
+        let found: Vec<&str> = columns.iter().map(|(n, _)| n.as_str()).collect();
+        return Err(CompareError::data(
+            file,
+            None,
+            None,
+            format!(
+                "nothing to compare: expected t with x_S (or x), v_S (or v) or x_R, or the \
+                 per-period v_p; found {}",
+                if found.is_empty() {
+                    "nothing".to_owned()
+                } else {
+                    found.join(", ")
+                }
+            ),
+        ));
+    }
+    if let Some(t) = &data.t {
+        for (i, w) in t.values.windows(2).enumerate() {
+            if w[1] <= w[0] {
+                let what = if w[1] == w[0] {
+                    format!("time {} s repeats the previous one", w[1])
+                } else {
+                    format!("time {} s is before the previous {} s", w[1], w[0])
+                };
+                return Err(CompareError::data(
+                    file,
+                    Some(&t.name),
+                    Some(origin.row(i + 1, lines)),
+                    format!("{what}: times must increase"),
+                ));
+            }
+        }
+        if let Some(&t0) = t.values.first()
+            && t0 < 0.0
+        {
+            return Err(CompareError::data(
+                file,
+                Some(&t.name),
+                Some(origin.row(0, lines)),
+                format!("time {t0} s is before the simulated span, which starts at t = 0"),
+            ));
+        }
+        for c in samples.into_iter().flatten() {
+            if c.values.len() != t.values.len() {
+                return Err(CompareError::data(
+                    file,
+                    Some(&c.name),
+                    None,
+                    format!(
+                        "{} values, but the time column {} has {}",
+                        c.values.len(),
+                        t.name,
+                        t.values.len()
+                    ),
+                ));
+            }
+        }
+    } else if let Some(c) = samples.into_iter().flatten().next() {
+        return Err(CompareError::data(
+            file,
+            Some(&c.name),
+            None,
+            "samples need a time column (t or time, or --var-t)".to_owned(),
+        ));
+    }
+    if let (Some(p), Some(v)) = (&data.p, &data.v_p) {
+        if p.values.len() != v.values.len() {
+            return Err(CompareError::data(
+                file,
+                Some(&v.name),
+                None,
+                format!(
+                    "{} values, but the period column {} has {}",
+                    v.values.len(),
+                    p.name,
+                    p.values.len()
+                ),
+            ));
+        }
+        let mut last = 0.0;
+        for (i, &q) in p.values.iter().enumerate() {
+            if q.fract() != 0.0 || q < 1.0 || q <= last {
+                return Err(CompareError::data(
+                    file,
+                    Some(&p.name),
+                    Some(origin.row(i, lines)),
+                    format!("period index {q} is not an integer >= 1 above the previous one"),
+                ));
+            }
+            last = q;
+        }
+    }
+    Ok(())
+}
+
+/// The columns of a CSV file (name, raw values) and the file line of every
+/// data row.
+/// Only columns named in `wanted` (case-insensitive) are parsed; the others
+/// are returned empty.
+fn read_csv(
+    path: &Path,
+    file: &str,
+    wanted: &[String],
+) -> Result<(Vec<RawColumn>, Vec<usize>), CompareError> {
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .flexible(false)
+        .from_path(path)
+        .map_err(|e| CompareError::io(file, e.to_string()))?;
+    let header: Vec<String> = reader
+        .headers()
+        .map_err(|e| CompareError::io(file, e.to_string()))?
+        .iter()
+        .map(str::to_owned)
+        .collect();
+    if header.iter().all(String::is_empty) {
+        return Err(CompareError::data(
+            file,
+            None,
+            None,
+            "no header row with column names".to_owned(),
+        ));
+    }
+    let mut columns: Vec<RawColumn> = header.iter().map(|n| (n.clone(), Ok(Vec::new()))).collect();
+    let parse: Vec<bool> = header
+        .iter()
+        .map(|n| wanted.iter().any(|w| w.eq_ignore_ascii_case(n)))
+        .collect();
+    // Row index at which each column ended (its first empty cell).
+    let mut ended: Vec<Option<usize>> = vec![None; header.len()];
+    let mut lines = Vec::new();
+    let mut record = csv::StringRecord::new();
+    let mut row = 0;
+    loop {
+        match reader.read_record(&mut record) {
+            Ok(false) => break,
+            Ok(true) => {}
+            Err(e) => return Err(CompareError::io(file, e.to_string())),
+        }
+        let line = record.position().map_or(0, |p| p.line() as usize);
+        lines.push(line);
+        for (j, cell) in record.iter().enumerate() {
+            if !parse[j] {
+                continue;
+            }
+            // A column that cannot be read is an error only if it is used.
+            let Ok(values) = &mut columns[j].1 else {
+                continue;
+            };
+            let at = Some(format!("row {} (line {line})", row + 1));
+            if cell.is_empty() {
+                ended[j].get_or_insert(row);
+                continue;
+            }
+            if let Some(end) = ended[j] {
+                columns[j].1 = Err((
+                    at,
+                    format!(
+                        "a value after the empty cell of row {}: a column may only end \
+                         early, not have gaps",
+                        end + 1
+                    ),
+                ));
+                continue;
+            }
+            match cell.parse::<f64>() {
+                Ok(v) => values.push(v),
+                Err(_) => columns[j].1 = Err((at, format!("`{cell}` is not a number"))),
+            }
+        }
+        row += 1;
+    }
+    Ok((columns, lines))
+}
+/// The variables of a MAT-file (name, values, or why the variable is not a
+/// real numeric vector; that is an error only when the variable is used).
+fn read_mat(path: &Path, file: &str) -> Result<Vec<RawColumn>, CompareError> {
+    let bytes = std::fs::File::open(path).map_err(|e| CompareError::io(file, e.to_string()))?;
+    let mat = matfile::MatFile::parse(std::io::BufReader::new(bytes)).map_err(|e| {
+        CompareError::data(
+            file,
+            None,
+            None,
+            format!("not a MATLAB Level 5 MAT-file ({e})"),
+        )
+    })?;
+    Ok(mat
+        .arrays()
+        .iter()
+        .map(|array| {
+            let size = array.size();
+            let shape = size
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join("x");
+            let values = match to_f64(array.data()) {
+                None => Err((
+                    None,
+                    format!("is a complex {shape} array, not a real numeric vector"),
+                )),
+                Some(_) if size.iter().filter(|&&n| n > 1).count() > 1 => {
+                    Err((None, format!("is a {shape} array, not a vector")))
+                }
+                Some(v) => Ok(v),
+            };
+            (array.name().to_owned(), values)
+        })
+        .collect())
+}
+
+/// Real values as doubles, or `None` for complex data.
+fn to_f64(data: &matfile::NumericData) -> Option<Vec<f64>> {
+    use matfile::NumericData as D;
+    fn conv<T: Copy + Into<f64>>(real: &[T], imag: &Option<Vec<T>>) -> Option<Vec<f64>> {
+        imag.is_none()
+            .then(|| real.iter().map(|&x| x.into()).collect())
+    }
+    match data {
+        D::Int8 { real, imag } => conv(real, imag),
+        D::UInt8 { real, imag } => conv(real, imag),
+        D::Int16 { real, imag } => conv(real, imag),
+        D::UInt16 { real, imag } => conv(real, imag),
+        D::Int32 { real, imag } => conv(real, imag),
+        D::UInt32 { real, imag } => conv(real, imag),
+        D::Int64 { real, imag } => imag
+            .is_none()
+            .then(|| real.iter().map(|&x| x as f64).collect()),
+        D::UInt64 { real, imag } => imag
+            .is_none()
+            .then(|| real.iter().map(|&x| x as f64).collect()),
+        D::Single { real, imag } => conv(real, imag),
+        D::Double { real, imag } => conv(real, imag),
+    }
+}
