@@ -323,6 +323,15 @@ pub enum Outcome {
 }
 
 impl Outcome {
+    /// Every name [`Outcome::regime`] gives.
+    pub const REGIMES: [&'static str; 5] = [
+        "stuck",
+        "stick-slip",
+        "slip-slip",
+        "run-away",
+        "not_converged",
+    ];
+
     /// `regime` in reports and sweep rows: `stuck`, `stick-slip`,
     /// `slip-slip`, `run-away` or `not_converged`.
     pub fn regime(&self) -> &'static str {

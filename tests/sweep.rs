@@ -55,13 +55,18 @@ fn s(p: &Path) -> &str {
 }
 
 /// A CSV row of [`SMALL`] (v_inf is the sixth column) with another v_inf.
+/// `line` of a sweep CSV whose columns are `case`, three axes,
+/// `scene_hash`, `regime`, `v_inf`, ... with another `v_inf`.
 fn with_v_inf(line: &str, v_inf: &str) -> String {
     let mut fields: Vec<&str> = line.split(',').collect();
-    fields[5] = v_inf;
+    fields[6] = v_inf;
     fields.join(",")
 }
 
-/// CSV rows as header-keyed maps, without `wall_time_s`.
+/// The timing columns, left out with `--no-timing`.
+const TIMING: [&str; 3] = ["wall_time_s", "setup_time_s", "simulation_time_s"];
+
+/// CSV rows as header-keyed maps, without the timing columns.
 fn rows_without_timing(path: &Path) -> Vec<Vec<(String, String)>> {
     let mut reader = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
@@ -74,7 +79,7 @@ fn rows_without_timing(path: &Path) -> Vec<Vec<(String, String)>> {
             header
                 .iter()
                 .zip(r.unwrap().iter())
-                .filter(|(k, _)| *k != "wall_time_s")
+                .filter(|(k, _)| !TIMING.contains(k))
                 .map(|(k, v)| (k.to_owned(), v.to_owned()))
                 .collect()
         })
@@ -221,7 +226,7 @@ fn a_rerun_runs_only_the_missing_cases() {
     // An output with other columns (here: timing) is refused, untouched.
     let err = failure(stickslip(&["sweep", s(&file), "-q", "-o", s(&out)]));
     assert!(
-        err.contains("has no columns wall_time_s compared with"),
+        err.contains("has no columns wall_time_s, setup_time_s, simulation_time_s compared with"),
         "{err}"
     );
     assert_eq!(fs::read_to_string(&out).unwrap(), edited);
@@ -459,7 +464,9 @@ fn merge_refuses_mismatched_inputs() {
     let out = d.join("out.csv");
     let err = failure(stickslip(&["merge", "-o", s(&out), s(&a), s(&b)]));
     assert!(
-        err.contains("b.csv: has the extra columns wall_time_s compared with"),
+        err.contains(
+            "b.csv: has the extra columns wall_time_s, setup_time_s, simulation_time_s compared with"
+        ),
         "{err}"
     );
     let err = failure(stickslip(&["merge", "-o", s(&out), s(&a), s(&c)]));
@@ -493,28 +500,53 @@ fn merge_refuses_mismatched_inputs() {
     );
 }
 
-/// A case that cannot run is written with its reason in `failure` (the
-/// other result columns empty), does not stop the sweep, and is not rerun.
+/// A run-away is a physical outcome: its row has the regime `run-away`,
+/// the velocity of its last period and no indicators, and no failure. A
+/// case whose run fails (here: its time limit runs out) is written with
+/// the reason in `failure` and the other result columns empty. Neither
+/// stops the sweep, and neither is rerun.
 #[test]
-fn a_failing_case_is_written_with_its_reason() {
+fn a_run_away_is_a_row_and_a_failing_case_is_written_with_its_reason() {
     let d = dir("failure");
-    // g_t = 500 m/s^2 > a_0 = 124 m/s^2: friction cannot hold the slider.
+    // The paper's motor with a time limit of 0.2 s per run.
+    let base = Scene::default().to_toml().replace(
+        "verify_steady_state = false",
+        "verify_steady_state = false\ntime_limit_s = 0.2",
+    );
+    assert!(base.contains("time_limit_s"));
+    write(&d, "base.toml", &base);
+    // g_t = 500 m/s^2 > a_d = 112 m/s^2 (docs/model.md section 6): sliding
+    // friction cannot hold the slider. kappa = 1e9: the start-up from rest
+    // takes of the order of kappa periods, far beyond 0.2 s.
     let file = write(
         &d,
         "f.toml",
-        "[axes]\nextra_acceleration = [0, 500]\n[outputs]\nindicators = [\"v_inf\"]\n",
+        "base = \"base.toml\"\n[axes]\nkappa = [36, 1e9]\nextra_acceleration = [0, 500]\n[outputs]\nindicators = [\"v_inf\", \"startup_time\"]\n",
     );
     let out = d.join("f.csv");
     let args = ["sweep", s(&file), "-q", "--no-timing", "-o", s(&out)];
     let err = ok(stickslip(&args));
-    assert!(err.contains("2 run, 1 failed"), "{err}");
+    assert!(err.contains("4 run, 2 failed"), "{err}");
     let rows = rows_without_timing(&out);
     let get =
         |row: &[(String, String)], key: &str| row.iter().find(|(k, _)| k == key).unwrap().1.clone();
+    // Case 0: the paper's default.
     assert!(get(&rows[0], "v_inf").parse::<f64>().unwrap() > 0.29);
+    assert_eq!(get(&rows[0], "regime"), "slip-slip");
     assert_eq!(get(&rows[0], "failure"), "");
+    // Case 1: kappa = 36 with the load: a run-away, forward (g_t > 0).
+    assert_eq!(get(&rows[1], "regime"), "run-away");
     assert_eq!(get(&rows[1], "v_inf"), "");
-    assert!(get(&rows[1], "failure").contains("no periodic steady state"));
+    assert_eq!(get(&rows[1], "failure"), "");
+    assert!(get(&rows[1], "last_v_p").parse::<f64>().unwrap() > 0.0);
+    // Cases 2 and 3: kappa = 1e9, with and without the load (which would
+    // run away only once the slider leaves the rod's huge velocity range):
+    // the time limit.
+    for row in &rows[2..] {
+        assert_eq!(get(row, "regime"), "");
+        assert_eq!(get(row, "v_inf"), "");
+        assert!(get(row, "failure").contains("time limit"), "{rows:?}");
+    }
     let err = ok(stickslip(&args));
-    assert!(err.contains("2 already written, 0 run"), "{err}");
+    assert!(err.contains("4 already written, 0 run"), "{err}");
 }

@@ -19,10 +19,11 @@ pub(crate) struct SweepArgs {
     /// Run only shard i of N (i from 1): the cases with index % N == i - 1.
     #[arg(long, value_name = "i/N")]
     shard: Option<Shard>,
-    /// Leave out the wall_time_s column: the same sweep then writes the same bytes.
+    /// Leave out the timing columns (wall_time_s, setup_time_s,
+    /// simulation_time_s): the same sweep then writes the same bytes.
     #[arg(long)]
     no_timing: bool,
-    /// No progress bar.
+    /// No progress bar and no plausibility warnings.
     #[arg(short, long)]
     quiet: bool,
     /// Worker threads (default and maximum: the available CPUs; never more

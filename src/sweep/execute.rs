@@ -298,7 +298,7 @@ pub fn execute(sweep: &Sweep, options: &Options) -> Result<Summary, SweepError> 
                         .next();
                     let Some((position, index)) = next else { break };
                     let Some(case) = sweep.case(index) else { break };
-                    let result = run_case(&case);
+                    let result = simulation::simulate(&case.scene);
                     let cells: Vec<Cell> = layout
                         .columns
                         .iter()

@@ -69,16 +69,20 @@
 //!
 //! * `case`, then one column per axis (in the order above), then
 //!   `scene_hash`: the fingerprint of the case's resolved scene (every
-//!   parameter, not only the axis values);
+//!   parameter, not only the axis values), and `regime`: the outcome
+//!   ([`crate::simulation::Outcome::regime`]; empty only for a failed run);
 //! * each requested indicator under its `docs/interface.md` name, in the order
 //!   of [`Indicator::ALL`]; `stiction_fraction` (the start-up from rest, as
 //!   in `stickslip run --json`) is followed by `stiction_fraction_steady`
-//!   and `velocity_per_power` by `apparent_power` (VA);
+//!   and `velocity_per_power` by `apparent_power` (VA); empty without a
+//!   steady state;
 //! * `period` (s), `startup_periods`, `periods_simulated`, `events_total`
-//!   (events of the simulated start-up), `wall_time_s` (left out with
-//!   [`Options::timing`] `= false`, so that the same sweep gives the same
-//!   bytes), `error_v_inf` (estimated absolute error of `v_inf`), and
-//!   `failure` (empty, or why the case could not be run).
+//!   (events of the start-up), `last_v_p` (m/s, for `run-away` and
+//!   `not_converged`), `wall_time_s`, `setup_time_s` and
+//!   `simulation_time_s` (left out with [`Options::timing`] `= false`, so
+//!   that the same sweep gives the same bytes), `error_v_inf` (estimated
+//!   absolute error of `v_inf`), and `failure` (empty, or why the case's
+//!   run failed; the row then holds nothing else but the case's columns).
 //!
 //! Numbers are written with the shortest digits that read back to the same
 //! `f64`: Rust's `{}` (`{:e}` below `1e-4` and from `1e16`) in CSV,

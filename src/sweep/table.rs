@@ -2,11 +2,11 @@
 //! reading a file back strictly (every cell must be one a sweep could have
 //! written), for resuming and merging.
 
-use super::execute::CaseResult;
 use super::grid::{Axis, AxisKey, AxisValue, Case, Format, MAX_CASES, Sweep};
 use crate::error::{Error, SweepError};
 use crate::provenance::{VERSION, scene_hash};
 use crate::scene::Indicator;
+use crate::simulation::Outcome;
 use std::path::Path;
 
 /// The first line of an output file: the program that wrote it and the
@@ -73,7 +73,7 @@ impl Meta {
 pub(super) fn column_kinds(sweep: &Sweep, timing: bool) -> Vec<Column> {
     let mut columns = vec![Column::Case];
     columns.extend(sweep.axes().iter().map(|(a, _)| Column::Axis(*a)));
-    columns.push(Column::SceneHash);
+    columns.extend([Column::SceneHash, Column::Regime]);
     for indicator in Indicator::ALL {
         if sweep.base().outputs.indicators.contains(&indicator) {
             columns.push(Column::Indicator(indicator));
@@ -89,9 +89,10 @@ pub(super) fn column_kinds(sweep: &Sweep, timing: bool) -> Vec<Column> {
         Column::StartupPeriods,
         Column::PeriodsSimulated,
         Column::EventsTotal,
+        Column::LastVp,
     ]);
     if timing {
-        columns.push(Column::WallTime);
+        columns.extend([Column::WallTime, Column::SetupTime, Column::SimulationTime]);
     }
     columns.extend([Column::ErrorVInf, Column::Failure]);
     columns
@@ -176,6 +177,10 @@ pub(super) enum Column {
     WallTime,
     ErrorVInf,
     Failure,
+    Regime,
+    LastVp,
+    SetupTime,
+    SimulationTime,
 }
 
 impl Column {
@@ -194,12 +199,20 @@ impl Column {
             Column::WallTime => "wall_time_s",
             Column::ErrorVInf => "error_v_inf",
             Column::Failure => "failure",
+            Column::Regime => "regime",
+            Column::LastVp => "last_v_p",
+            Column::SetupTime => "setup_time_s",
+            Column::SimulationTime => "simulation_time_s",
         }
     }
 
     fn from_name(name: &str) -> Option<Column> {
-        const FIXED: [Column; 10] = [
+        const FIXED: [Column; 14] = [
             Column::Case,
+            Column::Regime,
+            Column::LastVp,
+            Column::SetupTime,
+            Column::SimulationTime,
             Column::SceneHash,
             Column::StictionSteady,
             Column::ApparentPower,
@@ -226,6 +239,7 @@ impl Column {
             Column::Case => 0,
             Column::Axis(a) => 1 + Axis::ALL.iter().position(|x| *x == a).unwrap_or(0),
             Column::SceneHash => 20,
+            Column::Regime => 21,
             Column::Indicator(i) => 30 + 2 * indicator(i),
             Column::StictionSteady => 31 + 2 * indicator(Indicator::StictionFraction),
             Column::ApparentPower => 31 + 2 * indicator(Indicator::VelocityPerPower),
@@ -233,14 +247,20 @@ impl Column {
             Column::StartupPeriods => 51,
             Column::PeriodsSimulated => 52,
             Column::EventsTotal => 53,
-            Column::WallTime => 54,
-            Column::ErrorVInf => 55,
-            Column::Failure => 56,
+            Column::LastVp => 54,
+            Column::WallTime => 55,
+            Column::SetupTime => 56,
+            Column::SimulationTime => 57,
+            Column::ErrorVInf => 58,
+            Column::Failure => 59,
         }
     }
 
-    /// The cell of this column for `case` and its result.
-    pub fn cell(self, case: &Case, result: &Result<CaseResult, Error>) -> Cell {
+    /// The cell of this column for `case` and its outcome. Every physical
+    /// outcome is a row with its `regime`; indicators that do not exist
+    /// (no steady state) are empty. Only an error fills `failure`, and its
+    /// row has nothing else but the case's own columns.
+    pub fn cell(self, case: &Case, result: &Result<Outcome, Error>) -> Cell {
         match self {
             Column::Case => return Cell::Unsigned(case.index as u64),
             Column::Axis(a) => return case.value(a).map_or(Cell::Empty, Cell::axis),
@@ -253,30 +273,36 @@ impl Column {
             }
             _ => {}
         }
-        let Ok(CaseResult { report: r, .. }) = result else {
+        let Ok(outcome) = result else {
             return Cell::Empty;
         };
-        let ind = &r.indicators;
+        let report = outcome.report();
+        let unsettled = outcome.unsettled();
+        let (setup, simulation, wall) = outcome.times();
         match self {
-            Column::Indicator(indicator) => Cell::number(match indicator {
-                Indicator::VInf => Some(ind.v_inf),
-                Indicator::StartupTime => r.startup_time(),
-                Indicator::Smoothness => Some(ind.smoothness),
-                Indicator::Durability => Some(ind.durability),
-                Indicator::FrictionEnergy => Some(ind.friction_energy),
-                Indicator::StictionFraction => r.stiction_fraction_transient,
-                Indicator::VelocityPerPower => r.velocity_per_power(),
-            }),
-            Column::StictionSteady => Cell::number(Some(ind.stiction_fraction)),
-            Column::ApparentPower => Cell::number(r.power.as_ref().map(|p| p.apparent_power)),
-            Column::Period => Cell::number(Some(r.period)),
-            Column::StartupPeriods => r.startup_periods.map_or(Cell::Empty, Cell::Unsigned),
-            Column::PeriodsSimulated => {
-                Cell::Unsigned(r.transient.as_ref().map_or(0, |t| t.periods()))
+            Column::Regime => Cell::Text(outcome.regime().to_owned()),
+            Column::Indicator(indicator) => Cell::number(outcome.indicator(indicator)),
+            Column::StictionSteady => Cell::number(report.map(|r| r.indicators.stiction_fraction)),
+            Column::ApparentPower => {
+                Cell::number(report.and_then(|r| r.power.as_ref().map(|p| p.apparent_power)))
             }
-            Column::EventsTotal => Cell::Unsigned(r.events().total()),
-            Column::WallTime => Cell::number(Some(r.wall_time.as_secs_f64())),
-            Column::ErrorVInf => Cell::number(r.error.v_inf),
+            Column::Period => Cell::number(
+                report
+                    .map(|r| r.period)
+                    .or_else(|| unsettled.map(|u| u.period)),
+            ),
+            Column::StartupPeriods => report
+                .and_then(|r| r.startup_periods)
+                .map_or(Cell::Empty, Cell::Unsigned),
+            Column::PeriodsSimulated => Cell::Unsigned(outcome.periods_simulated()),
+            Column::EventsTotal => {
+                report.map_or(Cell::Empty, |r| Cell::Unsigned(r.events().total()))
+            }
+            Column::LastVp => Cell::number(unsettled.and_then(|u| u.last_v_p)),
+            Column::WallTime => Cell::number(Some(wall.as_secs_f64())),
+            Column::SetupTime => Cell::number(Some(setup.as_secs_f64())),
+            Column::SimulationTime => Cell::number(Some(simulation.as_secs_f64())),
+            Column::ErrorVInf => Cell::number(report.and_then(|r| r.error.v_inf)),
             Column::Case | Column::Axis(_) | Column::SceneHash | Column::Failure => {
                 unreachable!("handled above")
             }
@@ -294,6 +320,9 @@ impl Column {
             }
             Column::SceneHash => "16 hexadecimal digits",
             Column::Failure => "text or nothing",
+            Column::Regime => {
+                return format!("one of {} or nothing", Outcome::REGIMES.join(", "));
+            }
             Column::Axis(Axis::Harmonics) => "an integer",
             Column::Axis(Axis::Sigma) => "true or false",
             Column::Axis(_) => "a number",
@@ -316,6 +345,8 @@ impl Column {
                 s.len() == 16 && s.bytes().all(|b| b.is_ascii_hexdigit())
             }
             (Column::Failure, Cell::Text(_) | Cell::Empty) => true,
+            (Column::Regime, Cell::Text(name)) => Outcome::REGIMES.contains(&name.as_str()),
+            (Column::Regime, Cell::Empty) => true,
             (Column::Axis(axis), cell) => match (axis, cell) {
                 (Axis::Harmonics, Cell::Integer(n)) => axis.accepts(AxisValue::Integer(*n)),
                 (Axis::Sigma, Cell::Bool(_)) => true,
@@ -328,7 +359,10 @@ impl Column {
                 | Column::StictionSteady
                 | Column::ApparentPower
                 | Column::Period
+                | Column::LastVp
                 | Column::WallTime
+                | Column::SetupTime
+                | Column::SimulationTime
                 | Column::ErrorVInf,
                 Cell::Number(x),
             ) => x.is_finite(),
@@ -337,7 +371,10 @@ impl Column {
                 | Column::StictionSteady
                 | Column::ApparentPower
                 | Column::Period
+                | Column::LastVp
                 | Column::WallTime
+                | Column::SetupTime
+                | Column::SimulationTime
                 | Column::ErrorVInf,
                 Cell::Empty,
             ) => true,
@@ -368,7 +405,7 @@ impl Column {
                 Column::Axis(Axis::Sigma) => {
                     text.parse().map_or(Cell::Text(text.into()), Cell::Bool)
                 }
-                Column::SceneHash | Column::Failure => Cell::Text(text.into()),
+                Column::SceneHash | Column::Failure | Column::Regime => Cell::Text(text.into()),
                 _ => text.parse().map_or(Cell::Text(text.into()), Cell::Number),
             }
         };
@@ -576,6 +613,7 @@ pub(super) fn parse(path: &Path, text: &str) -> Result<Parsed, SweepError> {
                 })?;
                 cells.push(cell);
             }
+            consistent(&columns, &cells).map_err(|reason| bad(number, reason))?;
             let row = row(number, cells).ok_or_else(|| bad(number, "no case index".into()))?;
             parsed.rows.push(row);
         }
@@ -623,11 +661,39 @@ pub(super) fn parse(path: &Path, text: &str) -> Result<Parsed, SweepError> {
             })?;
             cells.push(cell);
         }
+        consistent(&columns, &cells).map_err(|reason| bad(number, reason))?;
         let row = row(number, cells).ok_or_else(|| bad(number, "no case index".into()))?;
         parsed.rows.push(row);
     }
     parsed.columns = Some(columns);
     Ok(parsed)
+}
+
+/// A row holds what a sweep writes: an outcome (a `regime`, no `failure`)
+/// or an error (a `failure` text and nothing but the case's own columns).
+fn consistent(columns: &[Column], cells: &[Cell]) -> Result<(), String> {
+    let at = |c: Column| columns.iter().position(|x| *x == c).map(|i| &cells[i]);
+    if let Some(Cell::Text(_)) = at(Column::Failure) {
+        let own = |c: &Column| {
+            matches!(
+                c,
+                Column::Case | Column::Axis(_) | Column::SceneHash | Column::Failure
+            )
+        };
+        if let Some((c, _)) = columns
+            .iter()
+            .zip(cells)
+            .find(|(c, cell)| !own(c) && **cell != Cell::Empty)
+        {
+            return Err(format!(
+                "has a failure and a value of {}: a sweep writes one or the other",
+                c.name()
+            ));
+        }
+    } else if let Some(Cell::Empty) = at(Column::Regime) {
+        return Err("has neither a regime nor a failure".to_owned());
+    }
+    Ok(())
 }
 
 /// A row from its cells; `None` without a `case` cell first.
