@@ -82,6 +82,17 @@ fn the_run_away_load_scene_is_a_result() {
     assert!(v["final_velocity"].as_f64().unwrap() < 0.0);
 }
 
+/// `check` of a scene without a steady state reports the outcome (exit
+/// 0) instead of failing: there is nothing to cross-check.
+#[test]
+fn check_of_a_run_away_is_a_result() {
+    let o = stickslip(&["check", "tests/data/runaway_load.toml", "--steps", "50"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(text.contains("run-away (backward)"), "{text}");
+    assert!(text.contains("no steady state to cross-check"), "{text}");
+}
+
 /// A rod acceleration far inside the stick band (kappa = 1e-4, as in
 /// tests/engine.rs): the slider follows the rod, stuck, and its v_inf is 0
 /// within its error estimate (it follows a periodic rod).
