@@ -13,7 +13,20 @@ use crate::engine::{PeriodEngine, PeriodStart, WorkCounters};
 use crate::error::SimulationError;
 use crate::observer::{Observer, PeriodEnd};
 use crate::signal::Signal;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
+
+/// Whether long runs report progress on standard error (set by the command
+/// line for an interactive terminal).
+static PROGRESS: AtomicBool = AtomicBool::new(false);
+
+/// Seconds between two progress lines of a long run.
+const PROGRESS_EVERY: Duration = Duration::from_secs(2);
+
+/// Turns progress lines of long runs on standard error on or off.
+pub fn show_progress(on: bool) {
+    PROGRESS.store(on, Ordering::Relaxed);
+}
 
 /// An engine that stops with [`SimulationError::TimeLimit`] once the
 /// budget, counted from [`TimeBudget::new`], has run out. Without a budget
@@ -22,6 +35,9 @@ pub struct TimeBudget<E> {
     engine: E,
     /// Start of the clock and the budget in seconds, when there is one.
     limit: Option<(Instant, Duration, f64)>,
+    /// Start of the run and the time of the last progress line, when
+    /// progress is shown.
+    progress: Option<(Instant, Instant)>,
 }
 
 impl<E: PeriodEngine> TimeBudget<E> {
@@ -33,7 +49,29 @@ impl<E: PeriodEngine> TimeBudget<E> {
                 .ok()
                 .map(|d| (Instant::now(), d, s))
         });
-        Self { engine, limit }
+        let now = Instant::now();
+        let progress = PROGRESS.load(Ordering::Relaxed).then_some((now, now));
+        Self {
+            engine,
+            limit,
+            progress,
+        }
+    }
+
+    /// A progress line every [`PROGRESS_EVERY`] of a long run.
+    fn report_progress(&mut self) {
+        let Some((start, last)) = self.progress else {
+            return;
+        };
+        if last.elapsed() >= PROGRESS_EVERY {
+            let now = Instant::now();
+            self.progress = Some((start, now));
+            eprintln!(
+                "stickslip: running: {} periods simulated in {:.0} s (run.max_periods bounds the start-up; --time-limit the run)",
+                self.engine.counters().periods,
+                (now - start).as_secs_f64()
+            );
+        }
     }
 }
 
@@ -57,6 +95,7 @@ impl<E: PeriodEngine> PeriodEngine for TimeBudget<E> {
                 period: self.engine.counters().periods,
             });
         }
+        self.report_progress();
         self.engine.run_period(period, start, observer)
     }
 

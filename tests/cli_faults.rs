@@ -315,3 +315,34 @@ fn usage_errors_16_10_say_what_was_wrong_and_exit_2() {
         assert!(o.stdout.is_empty());
     }
 }
+
+/// Issue 16.9: a long run on an interactive terminal says how far it got,
+/// every 2 s, on standard error. `script` (util-linux) gives the run a
+/// terminal; without one (as in every other test) nothing is printed.
+#[test]
+fn progress_16_9_a_long_run_on_a_terminal_reports_progress() {
+    let dir = temp_dir("progress");
+    let scene = write(&dir, "slow.toml", SLOW_SCENE);
+    let command = format!(
+        "{} run {} --time-limit 2.5",
+        env!("CARGO_BIN_EXE_stickslip"),
+        scene.display()
+    );
+    let o = std::process::Command::new("script")
+        .args(["-qec", &command, "/dev/null"])
+        .output()
+        .expect("script (util-linux) runs");
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("stickslip: running: ") && text.contains("periods simulated in 2 s"),
+        "{text}"
+    );
+    // Without a terminal: no progress line.
+    let o = stickslip()
+        .arg("run")
+        .arg(&scene)
+        .args(["--time-limit", "2.5"])
+        .output()
+        .unwrap();
+    assert!(!stderr(&o).contains("running:"), "{}", stderr(&o));
+}

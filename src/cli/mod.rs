@@ -164,6 +164,10 @@ impl SceneOptions {
     /// ([`crate::Scene::warnings`]) are printed on the error stream, one
     /// line each.
     pub(crate) fn apply(&self, scene: &mut crate::Scene, streams: &mut Streams<'_>) {
+        // Long runs say how far they got, on an interactive terminal.
+        crate::budget::show_progress(
+            !self.quiet && std::io::IsTerminal::is_terminal(&std::io::stderr()),
+        );
         if let Some(limit) = self.time_limit {
             scene.run.time_limit_s = Some(limit);
         }
