@@ -6,29 +6,16 @@
 //! changing nothing but adding the cross-check; and the same indicator
 //! values from `run --json`, `check` and a sweep row.
 
+mod common;
+
+use common::{stickslip, write};
+
 use serde_json::Value;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn stickslip(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stickslip-outcomes-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
+    common::scratch("outcomes", name)
 }
 
 fn run_json(scene: &Path) -> Value {

@@ -2,57 +2,27 @@
 //! `level` axis, case order, and bad sweep files. Small grids of the
 //! paper's motor, so that the whole file runs in seconds.
 
+mod common;
+
+use common::{failure, ok, s, stickslip, write};
+
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use stickslip::Scene;
 use stickslip::sweep::{self, Axis, AxisValue, Shard, Sweep};
 
 /// 2 levels x 3 n x 2 sigma = 12 cases of the default scene's motor.
+/// A fresh directory for one test.
+fn dir(name: &str) -> PathBuf {
+    common::scratch("sweep", name)
+}
+
 const SMALL: &str = r#"
 [axes]
 level = [3, 6]
 harmonics = [2, 3, 4]
 sigma = [false, true]
 "#;
-
-/// A fresh directory for one test.
-fn dir(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("sweep")
-        .join(name);
-    let _ = fs::remove_dir_all(&d);
-    fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let p = dir.join(name);
-    fs::write(&p, text).unwrap();
-    p
-}
-
-fn stickslip(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn ok(o: Output) -> String {
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert!(o.status.success(), "{err}");
-    err
-}
-
-fn failure(o: Output) -> String {
-    assert!(!o.status.success(), "expected a failure");
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
 
 /// A CSV row of [`SMALL`] (v_inf is the sixth column) with another v_inf.
 /// `line` of a sweep CSV whose columns are `case`, three axes,

@@ -3,10 +3,19 @@
 //! finished row on disk, one writer per output, merges that refuse rather
 //! than guess, and the regressions of issue 16.
 
+mod common;
+
+use common::{failure, ok, s, stickslip, write};
+
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
+
+/// A fresh directory for one test.
+fn dir(name: &str) -> PathBuf {
+    common::scratch("sweep_integrity", name)
+}
 
 const BIN: &str = env!("CARGO_BIN_EXE_stickslip");
 
@@ -16,45 +25,6 @@ const SMALL: &str = "[axes]\nlevel = [3, 6]\nharmonics = [2, 3, 4]\n";
 /// Sixteen cases of a fraction of a second each: `kappa = 1e6` needs a
 /// start-up of the order of `kappa` periods.
 const SLOW: &str = "[axes]\nkappa = [1e6]\nharmonics = [2]\nmu_static = [0.180, 0.181, 0.182, 0.183, 0.184, 0.185, 0.186, 0.187, 0.188, 0.189, 0.190, 0.191, 0.192, 0.193, 0.194, 0.195]\n[outputs]\nindicators = [\"v_inf\"]\n";
-
-fn dir(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("sweep_integrity")
-        .join(name);
-    let _ = fs::remove_dir_all(&d);
-    fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let p = dir.join(name);
-    fs::write(&p, text).unwrap();
-    p
-}
-
-fn stickslip(args: &[&str]) -> Output {
-    Command::new(BIN)
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn ok(o: Output) -> String {
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert!(o.status.success(), "{err}");
-    err
-}
-
-fn failure(o: Output) -> String {
-    assert_eq!(o.status.code(), Some(1), "expected exit status 1");
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
-    err
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
 
 fn spawn(args: &[&str]) -> Child {
     Command::new(BIN)

@@ -1,6 +1,9 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
 use stickslip::engine::event::{EventEngine, EventOptions};
 use stickslip::scene::Indicator;
 use stickslip::signal::SignalSpec;
@@ -87,4 +90,48 @@ pub fn data_text(name: &str) -> String {
 /// provenance in its header).
 pub fn reference_grid_text() -> String {
     data_text("section7_grid.csv")
+}
+
+/// A fresh, empty scratch directory `<target tmp>/<group>/<name>`.
+pub fn scratch(group: &str, name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(group)
+        .join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Writes `text` to `dir/name` and returns the path.
+pub fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// Runs the binary in the repository's top folder.
+pub fn stickslip(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the binary runs")
+}
+
+/// The error stream of a run that must succeed.
+pub fn ok(o: Output) -> String {
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "{err}");
+    err
+}
+
+/// The error stream of a run that must fail.
+pub fn failure(o: Output) -> String {
+    assert!(!o.status.success(), "expected a failure");
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A path as a command-line argument.
+pub fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
 }
