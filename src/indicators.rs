@@ -22,7 +22,8 @@
 //! engine. `g` need not be monotone (a stuck slider can be outrun by one
 //! that slides), so a map with several fixed points may yield one the
 //! start-up does not reach: the caller checks the fixed point against the
-//! start-up ([`crate::simulation::run_with`]). The transient from rest can
+//! start-up, or without it by [`fixed_point_is_nearest`]
+//! ([`crate::simulation::run_with`]). The transient from rest can
 //! be simulated until its own period-to-period changes have died out (with
 //! Aitken's extrapolation); the two steady states must agree.
 //!

@@ -51,6 +51,42 @@
 //! established limit within `run.max_periods` the result is
 //! [`Outcome::NotConverged`], with the bounds of 2.
 //!
+//! # Only what the scene asks for
+//!
+//! The start-up from rest is simulated only when something needs it: the
+//! start-up time, the start-up's stiction fraction, the event log,
+//! `run.verify_steady_state`. Otherwise (a `v_inf`-only scene, or one that
+//! asks only for steady-state indicators) an established fixed point `v*`
+//! of the search from rest is checked, instead of by the start-up, by a
+//! march of [`indicators::NEAREST_MARCH_POINTS`]` - 1` map evaluations at
+//! `x_i = i v* / 16` from rest towards `v*` ([`indicators::fixed_point_is_nearest`]):
+//!
+//! 4. a point `x` between rest and `v*` that the map does not move towards
+//!    `v*` (`P(x) <= x` for `v* > 0`) proves a fixed point in `[0, x]`:
+//!    `P` maps `[0, x]` into itself (`P(0) > 0`, `P(x) <= x`, monotone), so
+//!    it has a fixed point there (Tarski), nearer than `v*`; the run then
+//!    takes the orbit from rest (the slow path below);
+//! 5. every `x_i` with `g(x_i) = P(x_i) - x_i > 0` proves that no fixed
+//!    point lies in `[x_i, x_i + g(x_i)]`: for `v` there,
+//!    `P(v) >= P(x_i) = x_i + g(x_i) >= v`, equality only at the right
+//!    end, which is `P(x_i)`, and `P(P(x_i)) >= P(x_i)`, so the orbit from
+//!    `x_i` goes on; with `x_0 = 0` this covers `[0, P(0)]`;
+//! 6. what 4. and 5. leave open is a pair of further fixed points (an
+//!    interval where `g` has the sign opposite to `P(0) - 0`) lying between
+//!    two march points and narrower than `v* / 16`, or within the first
+//!    march point's gap to `v*`: the march does not see it, as the
+//!    start-up to `p_0.99` does not see one above `0.99 v*`. This is not
+//!    a proof: `run.verify_steady_state` settles such a doubt by
+//!    simulating the start-up to its own limit and comparing.
+//!
+//! The reported `v_inf`, its error estimate (from the engine's bound at the
+//! fixed point, which needs no start-up) and the steady-state indicators
+//! are bit for bit those of a run that simulates the start-up: both take
+//! the same fixed point from the same search. `periods_simulated` is then
+//! 0, the start-up's event counts are all 0 (counted over what was
+//! simulated), and `work.map_evaluations` ([`RunReport::map_evaluations`])
+//! counts the search, the march and the steady-state periods.
+//!
 //! With `run.verify_steady_state` the start-up is run on to its own limit
 //! and compared with the fixed point: a difference beyond the two error
 //! estimates is reported ([`SteadyStateCheck`]), and nothing else that is
@@ -480,7 +516,10 @@ impl SignalCache {
         };
         let lock = |m: &Mutex<HashMap<String, Arc<Signal>>>| {
             // A panic elsewhere leaves the map intact: keep using it.
-            m.lock().unwrap_or_else(|e| e.into_inner()).get(&key).cloned()
+            m.lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .get(&key)
+                .cloned()
         };
         if let Some(signal) = lock(&self.signals) {
             return Ok(signal);
@@ -778,10 +817,7 @@ fn simulate_timed<E: PeriodEngine>(
         // kept.
         if let Some(log) = &event_log {
             let logged = log.events.iter().filter(|e| e.period <= span).count();
-            event_log_omitted = transient
-                .events(span)
-                .total()
-                .saturating_sub(logged as u64);
+            event_log_omitted = transient.events(span).total().saturating_sub(logged as u64);
         }
     }
     let event_log: Option<Vec<Event>> =

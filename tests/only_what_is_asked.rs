@@ -45,9 +45,15 @@ fn v_inf_only_runs_skip_the_start_up_and_give_the_same_bits() {
     for scene in &scenes {
         let full = steady(scene);
         let fast = steady(&only_v_inf(scene));
-        let label = format!("{:?} g_t = {}", scene.signal, scene.motor.extra_acceleration);
+        let label = format!(
+            "{:?} g_t = {}",
+            scene.signal, scene.motor.extra_acceleration
+        );
         let startup = full.startup_periods.expect("the full run has a start-up");
-        assert!(fast.transient.is_none(), "{label}: a start-up was simulated");
+        assert!(
+            fast.transient.is_none(),
+            "{label}: a start-up was simulated"
+        );
         assert_eq!(fast.startup_span(), 0, "{label}");
         assert!(startup > 0, "{label}");
         assert!(
@@ -207,6 +213,9 @@ fn signal_cache_shares_the_signal_between_motors() {
         let Outcome::Steady(with) = with else {
             panic!("a steady state")
         };
-        assert_eq!(with.indicators.v_inf.to_bits(), own.indicators.v_inf.to_bits());
+        assert_eq!(
+            with.indicators.v_inf.to_bits(),
+            own.indicators.v_inf.to_bits()
+        );
     }
 }

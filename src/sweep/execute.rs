@@ -294,8 +294,7 @@ pub fn execute(sweep: &Sweep, options: &Options) -> Result<Summary, SweepError> 
         let (sender, receiver) = mpsc::sync_channel::<(usize, usize, String, bool)>(4 * jobs);
         for _ in 0..jobs {
             let sender = sender.clone();
-            let (pending_cases, stop, layout, signals) =
-                (&pending_cases, &stop, &layout, &signals);
+            let (pending_cases, stop, layout, signals) = (&pending_cases, &stop, &layout, &signals);
             scope.spawn(move || {
                 loop {
                     if stop.load(Ordering::SeqCst) || interrupt::requested().is_some() {
