@@ -1,6 +1,8 @@
-//! Throughput of the event engine: the default scene's full run (transient
-//! to steady state plus every indicator) and the raw event rate, as medians
-//! over repeated runs.
+//! Throughput of the event engine, as medians over repeated runs: set-up
+//! (signal and engine) and simulation time of a run with every indicator
+//! for n = 2 to 256 harmonics, with and without sigma factors; the
+//! `v_inf`-only default scene, which skips the start-up; and the raw event
+//! rate.
 //!
 //! `cargo run --release --example throughput`
 
@@ -8,6 +10,7 @@ use std::time::Instant;
 use stickslip::engine::PeriodEngine;
 use stickslip::engine::PeriodStart;
 use stickslip::engine::event::{EventEngine, EventOptions};
+use stickslip::scene::Indicator;
 use stickslip::signal::SignalSpec;
 use stickslip::{Motor, Scene, Signal, simulation};
 
@@ -36,7 +39,58 @@ fn event_rate(signal: &Signal, motor: &Motor, periods: u64) -> (f64, u64) {
     (events as f64 / seconds, events)
 }
 
+/// Medians of set-up, simulation and whole-run time (us) of `scene`, with
+/// the report of the last run.
+fn timed(scene: &Scene, runs: usize) -> (f64, f64, f64, simulation::RunReport) {
+    let (mut setup, mut sim, mut wall) = (Vec::new(), Vec::new(), Vec::new());
+    let mut last = None;
+    for _ in 0..runs {
+        let r = simulation::run(scene).expect("scene runs");
+        setup.push(r.setup_time.as_secs_f64() * 1e6);
+        sim.push(r.simulation_time.as_secs_f64() * 1e6);
+        wall.push(r.wall_time.as_secs_f64() * 1e6);
+        last = Some(r);
+    }
+    (
+        median(setup),
+        median(sim),
+        median(wall),
+        last.expect("runs > 0"),
+    )
+}
+
 fn main() {
+    println!("run with every indicator, medians (set-up = signal and engine):");
+    println!(
+        "  {:>4} {:>6} {:>11} {:>11} {:>11} {:>8} {:>7} {:>9}",
+        "n", "sigma", "set-up us", "sim. us", "run us", "periods", "events", "M ev/s"
+    );
+    for n in [2, 8, 16, 32, 64, 128, 256] {
+        for sigma in [true, false] {
+            let scene = Scene {
+                signal: SignalSpec::fourier(25e-6, 36.0, n, sigma),
+                ..Scene::default()
+            };
+            let runs = if n >= 128 { 7 } else { 15 };
+            let (setup, sim, wall, r) = timed(&scene, runs);
+            let events = r.work.events.total();
+            println!(
+                "  {n:>4} {sigma:>6} {setup:>11.0} {sim:>11.0} {wall:>11.0} {:>8} {events:>7} {:>9.2}",
+                r.work.periods,
+                events as f64 / sim
+            );
+        }
+    }
+    let mut only = Scene::default();
+    only.outputs.indicators = vec![Indicator::VInf];
+    let (setup, sim, wall, r) = timed(&only, 101);
+    println!(
+        "v_inf-only default scene: set-up {setup:.1} us, simulation {sim:.1} us, run {wall:.1} us; \
+         {} start-up periods, {} map evaluations, v_inf = {:?} m/s",
+        r.transient.as_ref().map_or(0, |t| t.periods()),
+        r.map_evaluations,
+        r.indicators.v_inf
+    );
     let runs = 31;
     let scene = Scene::default();
     let mut walls = Vec::new();

@@ -484,6 +484,11 @@ pub fn write_requested(scene: &crate::Scene, request: &TrajectoryRequest) -> Res
     let startup = if request.periods_series.is_some() {
         let mut exact_scene = scene.clone();
         exact_scene.run.engine = crate::scene::EngineKind::Event;
+        // p_0.99 needs the start-up, which a run simulates only when asked.
+        let startup = crate::scene::Indicator::StartupTime;
+        if !exact_scene.outputs.indicators.contains(&startup) {
+            exact_scene.outputs.indicators.push(startup);
+        }
         crate::simulation::run(&exact_scene)
             .map_err(|e| e.to_string())?
             .startup_periods

@@ -22,7 +22,8 @@
 //! engine. `g` need not be monotone (a stuck slider can be outrun by one
 //! that slides), so a map with several fixed points may yield one the
 //! start-up does not reach: the caller checks the fixed point against the
-//! start-up ([`crate::simulation::run_with`]). The transient from rest can
+//! start-up, or without it by [`fixed_point_is_nearest`]
+//! ([`crate::simulation::run_with`]). The transient from rest can
 //! be simulated until its own period-to-period changes have died out (with
 //! Aitken's extrapolation); the two steady states must agree.
 //!
@@ -517,6 +518,40 @@ pub fn moves_towards<E: PeriodEngine>(
     }
     let (p, _) = period_map(engine, v)?;
     Ok(if v < target { p > v } else { p < v })
+}
+
+/// Points of the march of [`fixed_point_is_nearest`] between rest and the
+/// fixed point.
+pub const NEAREST_MARCH_POINTS: u32 = 16;
+
+/// The check of a fixed point `v_star` found by the search from rest that
+/// replaces the start-up when no indicator needs it (docs/model.md section
+/// 10; the argument is in the module docs of [`crate::simulation`]): the
+/// map is evaluated at `NEAREST_MARCH_POINTS - 1` points evenly spaced
+/// between rest and `v_star` (those farther than `bound` from it), in
+/// order from rest. `Ok(false)` as soon as one of them is not moved
+/// towards `v_star` (`P(x) - x` zero or of the other sign): then a fixed
+/// point lies between rest and that point, nearer than `v_star`.
+/// `Ok(true)` when every point is moved towards `v_star`, with the number
+/// of map evaluations.
+pub fn fixed_point_is_nearest<E: PeriodEngine>(
+    engine: &mut E,
+    v_star: f64,
+    bound: f64,
+) -> Result<(bool, u32), SimulationError> {
+    let mut evaluations = 0;
+    for i in 1..NEAREST_MARCH_POINTS {
+        let x = v_star * (f64::from(i) / f64::from(NEAREST_MARCH_POINTS));
+        if (v_star - x).abs() <= bound {
+            break;
+        }
+        let (p, _) = period_map(engine, x)?;
+        evaluations += 1;
+        if (p - x) * v_star.signum() <= 0.0 {
+            return Ok((false, evaluations));
+        }
+    }
+    Ok((true, evaluations))
 }
 
 /// Iteration limit of the fixed-point search.

@@ -236,6 +236,7 @@ fn steady_json(m: &mut Map<String, Value>, r: &RunReport) {
             "evaluations": r.work.evaluations,
             "root_iterations": r.work.root_iterations,
             "fixed_point_iterations": r.steady.iterations,
+            "map_evaluations": r.map_evaluations,
         }),
     );
     if let Some(log) = &r.event_log {

@@ -51,6 +51,42 @@
 //! established limit within `run.max_periods` the result is
 //! [`Outcome::NotConverged`], with the bounds of 2.
 //!
+//! # Only what the scene asks for
+//!
+//! The start-up from rest is simulated only when something needs it: the
+//! start-up time, the start-up's stiction fraction, the event log,
+//! `run.verify_steady_state`. Otherwise (a `v_inf`-only scene, or one that
+//! asks only for steady-state indicators) an established fixed point `v*`
+//! of the search from rest is checked, instead of by the start-up, by a
+//! march of [`indicators::NEAREST_MARCH_POINTS`]` - 1` map evaluations at
+//! `x_i = i v* / 16` from rest towards `v*` ([`indicators::fixed_point_is_nearest`]):
+//!
+//! 4. a point `x` between rest and `v*` that the map does not move towards
+//!    `v*` (`P(x) <= x` for `v* > 0`) proves a fixed point in `[0, x]`:
+//!    `P` maps `[0, x]` into itself (`P(0) > 0`, `P(x) <= x`, monotone), so
+//!    it has a fixed point there (Tarski), nearer than `v*`; the run then
+//!    takes the orbit from rest (the slow path below);
+//! 5. every `x_i` with `g(x_i) = P(x_i) - x_i > 0` proves that no fixed
+//!    point lies in `[x_i, x_i + g(x_i)]`: for `v` there,
+//!    `P(v) >= P(x_i) = x_i + g(x_i) >= v`, equality only at the right
+//!    end, which is `P(x_i)`, and `P(P(x_i)) >= P(x_i)`, so the orbit from
+//!    `x_i` goes on; with `x_0 = 0` this covers `[0, P(0)]`;
+//! 6. what 4. and 5. leave open is a pair of further fixed points (an
+//!    interval where `g` has the sign opposite to `P(0) - 0`) lying between
+//!    two march points and narrower than `v* / 16`, or within the first
+//!    march point's gap to `v*`: the march does not see it, as the
+//!    start-up to `p_0.99` does not see one above `0.99 v*`. This is not
+//!    a proof: `run.verify_steady_state` settles such a doubt by
+//!    simulating the start-up to its own limit and comparing.
+//!
+//! The reported `v_inf`, its error estimate (from the engine's bound at the
+//! fixed point, which needs no start-up) and the steady-state indicators
+//! are bit for bit those of a run that simulates the start-up: both take
+//! the same fixed point from the same search. `periods_simulated` is then
+//! 0, the start-up's event counts are all 0 (counted over what was
+//! simulated), and `work.map_evaluations` ([`RunReport::map_evaluations`])
+//! counts the search, the march and the steady-state periods.
+//!
 //! With `run.verify_steady_state` the start-up is run on to its own limit
 //! and compared with the fixed point: a difference beyond the two error
 //! estimates is reported ([`SteadyStateCheck`]), and nothing else that is
@@ -75,7 +111,9 @@ use crate::motor::Motor;
 use crate::observer::{EventLog, Trajectory};
 use crate::power::{self, PowerReport};
 use crate::scene::{EngineKind, Indicator, Scene};
-use crate::signal::Signal;
+use crate::signal::{Signal, SignalSpec};
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// Estimated absolute error of each reported indicator (same units).
@@ -153,6 +191,10 @@ pub struct RunReport {
     pub error: ErrorEstimate,
     /// Engine work (all periods simulated, period-map evaluations included).
     pub work: WorkCounters,
+    /// Periods run from chosen start velocities rather than along the
+    /// start-up from rest: the fixed-point searches, the check that the
+    /// fixed point is the nearest one, the steady-state periods.
+    pub map_evaluations: u64,
     /// Set-up of signal and engine (s): 0 when the engine was handed in.
     pub setup_time: Duration,
     /// The analysis: start-up, fixed point, indicators, power.
@@ -228,12 +270,13 @@ impl RunReport {
     }
 
     /// Events of the start-up from rest (periods `1..=p_0.99`, see
-    /// [`RunReport::startup_span`]), or of one steady-state period when no
-    /// start-up was simulated.
+    /// [`RunReport::startup_span`]): counted over what was simulated, so all
+    /// zero when no start-up was simulated (a run that needs none, module
+    /// docs).
     pub fn events(&self) -> EventCounts {
         self.transient
             .as_ref()
-            .map_or(self.steady.stats.events, |t| t.events(self.startup_span()))
+            .map_or(EventCounts::default(), |t| t.events(self.startup_span()))
     }
 
     /// True if this indicator was asked for.
@@ -416,18 +459,37 @@ pub fn build(scene: &Scene) -> Result<(Signal, Motor), Error> {
 pub fn simulate(scene: &Scene) -> Result<Outcome, Error> {
     let clock = Instant::now();
     let (signal, motor) = build(scene)?;
+    simulate_built(scene, &signal, &motor, clock)
+}
+
+/// [`simulate`] with the scene's signal already built (by
+/// [`Signal::build`] from `scene.signal` and the scene's motor, e.g. from
+/// a [`SignalCache`]): the set-up time is then the motor's and the
+/// engine's alone.
+pub fn simulate_with_signal(scene: &Scene, signal: &Signal) -> Result<Outcome, Error> {
+    let clock = Instant::now();
+    let motor = Motor::new(scene.motor)?;
+    simulate_built(scene, signal, &motor, clock)
+}
+
+fn simulate_built(
+    scene: &Scene,
+    signal: &Signal,
+    motor: &Motor,
+    clock: Instant,
+) -> Result<Outcome, Error> {
     let mut outcome = match scene.run.engine {
         EngineKind::Event => {
-            let engine = EventEngine::new(&signal, &motor, EventOptions::default());
-            simulate_timed(engine, scene, &motor, clock)?
+            let engine = EventEngine::new(signal, motor, EventOptions::default());
+            simulate_timed(engine, scene, motor, clock)?
         }
         EngineKind::Fixed => {
             let options = FixedStepOptions {
                 steps_per_harmonic: scene.run.steps_per_harmonic,
                 ..FixedStepOptions::default()
             };
-            let engine = FixedStepEngine::new(&signal, &motor, options);
-            simulate_timed(engine, scene, &motor, clock)?
+            let engine = FixedStepEngine::new(signal, motor, options);
+            simulate_timed(engine, scene, motor, clock)?
         }
     };
     let wall = clock.elapsed();
@@ -436,6 +498,62 @@ pub fn simulate(scene: &Scene) -> Result<Outcome, Error> {
         Outcome::RunAway { state, .. } | Outcome::NotConverged(state) => state.wall_time = wall,
     }
     Ok(outcome)
+}
+
+/// Signals built once and shared, for many scenes that differ elsewhere
+/// (a sweep over the motor): keyed by the signal spec and, for the
+/// `kappa`-based kinds, by the motor's `a_0` (the only motor quantity a
+/// signal depends on, docs/model.md section 2). Safe to share between
+/// threads; holds at most [`SignalCache::CAPACITY`] signals (then it is
+/// emptied and starts again), so that a sweep over the signal itself does
+/// not keep every signal it ran.
+#[derive(Debug, Default)]
+pub struct SignalCache {
+    signals: Mutex<HashMap<String, Arc<Signal>>>,
+}
+
+impl SignalCache {
+    /// Signals kept at most.
+    pub const CAPACITY: usize = 64;
+
+    /// The signal of `scene`, built on first use.
+    pub fn get(&self, scene: &Scene) -> Result<Arc<Signal>, Error> {
+        let motor = Motor::new(scene.motor)?;
+        let key = match &scene.signal {
+            SignalSpec::Harmonics { .. } => format!("{:?}", scene.signal),
+            _ => format!("{:?} a_0 = {:?}", scene.signal, motor.a_0()),
+        };
+        let lock = |m: &Mutex<HashMap<String, Arc<Signal>>>| {
+            // A panic elsewhere leaves the map intact: keep using it.
+            m.lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .get(&key)
+                .cloned()
+        };
+        if let Some(signal) = lock(&self.signals) {
+            return Ok(signal);
+        }
+        // Built outside the lock: other threads go on meanwhile.
+        let signal = Arc::new(Signal::build(&scene.signal, &motor)?);
+        let mut map = self.signals.lock().unwrap_or_else(|e| e.into_inner());
+        if map.len() >= Self::CAPACITY {
+            map.clear();
+        }
+        Ok(map.entry(key).or_insert(signal).clone())
+    }
+
+    /// [`simulate`] with the signal from this cache.
+    pub fn simulate(&self, scene: &Scene) -> Result<Outcome, Error> {
+        let clock = Instant::now();
+        let signal = self.get(scene)?;
+        let motor = Motor::new(scene.motor)?;
+        simulate_built(scene, &signal, &motor, clock)
+    }
+
+    /// [`run`] with the signal from this cache.
+    pub fn run(&self, scene: &Scene) -> Result<RunReport, Error> {
+        Ok(self.simulate(scene)?.into_report()?)
+    }
 }
 
 /// Runs a scene with the engine it names, for callers that need a steady
@@ -535,43 +653,68 @@ fn simulate_timed<E: PeriodEngine>(
         ..Default::default()
     };
     let verify = scene.run.verify_steady_state;
+    // The start-up from rest is simulated only for what needs it: the
+    // start-up time, the start-up's stiction fraction, its event log and
+    // the cross-check of verify_steady_state (module docs, "Only what the
+    // scene asks for").
+    let needs_startup = verify
+        || wants(Indicator::StartupTime)
+        || wants(Indicator::StictionFraction)
+        || scene.outputs.events;
+    // Periods run from chosen velocities: the fixed-point searches, the
+    // march of the nearest-fixed-point check and the steady-state periods.
+    let mut map_evaluations = 0;
     // Fast path: the period map's fixed point from rest (the first period
     // from rest moves the slider exactly as the map does from v = 0), used
-    // only when established, then the start-up up to p_0.99 (on to
-    // convergence with verify_steady_state). See the module docs.
+    // only when established; then either the check that it is the nearest
+    // fixed point, or the start-up up to p_0.99 (on to convergence with
+    // verify_steady_state). See the module docs.
     let mut rest_fixed_point = None;
     let fast = if engine.steady_state_from_transient() {
         None
     } else {
-        match indicators::steady_state(&mut engine, 0.0, wanted, &mut trajectory) {
-            Ok(steady) => match established_bound(&signal, &steady) {
-                Some(bound) => {
-                    rest_fixed_point = Some((steady.boundary_velocity, steady.v_inf));
-                    // p_0.99 exists only where |v_inf| exceeds its error.
-                    let v_error = v_inf_error(&signal, &steady, bound);
-                    options.stop_at_startup =
-                        (!verify && steady.v_inf.abs() > v_error).then_some(steady.v_inf);
-                    let transient =
-                        indicators::transient(&mut engine, &options, wanted, &mut event_log)?;
-                    // Judge on what a run without verification sees: the
-                    // periods up to p_0.99.
-                    let seen = transient
-                        .startup_periods(steady.v_inf)
-                        .unwrap_or(transient.periods());
-                    let settled_elsewhere = transient.converged
-                        && transient.periods() <= seen
-                        && (transient.v_inf() - steady.v_inf).abs()
-                            > bound + transient.v_inf_error.unwrap_or(0.0);
-                    let passes = orbit_passes(&transient, seen, steady.boundary_velocity, bound);
-                    if transient.run_away.is_some() || !(settled_elsewhere || passes) {
-                        Some((steady, transient))
-                    } else {
-                        None
-                    }
+        let before = engine.counters().periods;
+        let found = indicators::steady_state(&mut engine, 0.0, wanted, &mut trajectory);
+        map_evaluations += engine.counters().periods - before;
+        let established = found
+            .ok()
+            .and_then(|steady| established_bound(&signal, &steady).map(|b| (steady, b)));
+        match established {
+            Some((steady, bound)) if !needs_startup => {
+                rest_fixed_point = Some((steady.boundary_velocity, steady.v_inf));
+                let (nearest, marched) = indicators::fixed_point_is_nearest(
+                    &mut engine,
+                    steady.boundary_velocity,
+                    bound,
+                )?;
+                map_evaluations += u64::from(marched);
+                nearest.then_some((steady, None))
+            }
+            Some((steady, bound)) => {
+                rest_fixed_point = Some((steady.boundary_velocity, steady.v_inf));
+                // p_0.99 exists only where |v_inf| exceeds its error.
+                let v_error = v_inf_error(&signal, &steady, bound);
+                options.stop_at_startup =
+                    (!verify && steady.v_inf.abs() > v_error).then_some(steady.v_inf);
+                let transient =
+                    indicators::transient(&mut engine, &options, wanted, &mut event_log)?;
+                // Judge on what a run without verification sees: the
+                // periods up to p_0.99.
+                let seen = transient
+                    .startup_periods(steady.v_inf)
+                    .unwrap_or(transient.periods());
+                let settled_elsewhere = transient.converged
+                    && transient.periods() <= seen
+                    && (transient.v_inf() - steady.v_inf).abs()
+                        > bound + transient.v_inf_error.unwrap_or(0.0);
+                let passes = orbit_passes(&transient, seen, steady.boundary_velocity, bound);
+                if transient.run_away.is_some() || !(settled_elsewhere || passes) {
+                    Some((steady, Some(transient)))
+                } else {
+                    None
                 }
-                None => None,
-            },
-            Err(_) => None,
+            }
+            None => None,
         }
     };
     let from_orbit = fast.is_none();
@@ -593,6 +736,7 @@ fn simulate_timed<E: PeriodEngine>(
                     (setup_time, clock.elapsed()),
                 ));
             }
+            let before = engine.counters().periods;
             let seed = transient.final_velocity;
             let reach = transient.remaining.unwrap_or(0.0) + transient.v_inf_error.unwrap_or(0.0);
             let steady = match indicators::fixed_point(&mut engine, seed) {
@@ -613,27 +757,35 @@ fn simulate_timed<E: PeriodEngine>(
                     &mut trajectory,
                 )?,
             };
-            (steady, transient)
+            map_evaluations += engine.counters().periods - before;
+            (steady, Some(transient))
         }
     };
-    if transient.run_away.is_some() {
+    if let Some(t) = transient.as_ref().filter(|t| t.run_away.is_some()) {
         return Ok(unsettled(
             &engine,
             &signal,
             &requested,
-            &transient,
+            t,
             rest_fixed_point,
             (setup_time, clock.elapsed()),
         ));
     }
     let indicators = steady.indicators(motor, period);
-    let mut error = estimate_errors(&signal, &steady, &transient, &indicators, from_orbit);
-    let startup_periods = error
-        .v_inf
-        .is_none_or(|e| indicators.v_inf.abs() > e)
-        .then(|| transient.startup_periods(steady.v_inf))
-        .flatten();
-    error.startup_time = startup_error(period, &steady, &transient, startup_periods, error.v_inf);
+    let mut error = estimate_errors(
+        &signal,
+        &steady,
+        transient.as_ref(),
+        &indicators,
+        from_orbit,
+    );
+    let startup_periods = transient
+        .as_ref()
+        .filter(|_| error.v_inf.is_none_or(|e| indicators.v_inf.abs() > e))
+        .and_then(|t| t.startup_periods(steady.v_inf));
+    error.startup_time = transient
+        .as_ref()
+        .and_then(|t| startup_error(period, &steady, t, startup_periods, error.v_inf));
     let power = match (&scene.actuator, &signal) {
         (Some(actuator), Signal::Fourier(s)) if wants(Indicator::VelocityPerPower) => {
             Some(power::input_power(s, actuator))
@@ -644,36 +796,41 @@ fn simulate_timed<E: PeriodEngine>(
         // S (35) is a closed form of the signal: only v_inf carries error.
         error.velocity_per_power = error.v_inf.map(|dv| dv / p.apparent_power);
     }
-    let span = startup_periods.unwrap_or(transient.periods());
-    let stiction_fraction_transient =
-        (wanted.stiction && span > 0).then(|| transient.stick_time(span) / (span as f64 * period));
-    if error.stiction_fraction.is_some() {
-        // Every start or end of a stick phase in the start-up may be off by
-        // the engine's event-time uncertainty; the sum is rounded per period.
-        let e = transient.events(span);
-        let transitions = (e.stick_to_slip + e.slip_to_stick + e.jump) as f64;
-        error.stiction_fraction = Some(
-            16.0 * f64::EPSILON * (e.total() as f64 + 2.0)
-                + transitions * steady.event_time_uncertainty / (span.max(1) as f64 * period),
-        );
+    let span = startup_periods.unwrap_or(transient.as_ref().map_or(0, Transient::periods));
+    let mut stiction_fraction_transient = None;
+    let mut event_log_omitted = 0;
+    let mut steady_state_check = None;
+    if let Some(transient) = &transient {
+        stiction_fraction_transient = (wanted.stiction && span > 0)
+            .then(|| transient.stick_time(span) / (span as f64 * period));
+        if error.stiction_fraction.is_some() {
+            // Every start or end of a stick phase in the start-up may be off
+            // by the engine's event-time uncertainty; the sum is rounded per
+            // period.
+            let e = transient.events(span);
+            let transitions = (e.stick_to_slip + e.slip_to_stick + e.jump) as f64;
+            error.stiction_fraction = Some(
+                16.0 * f64::EPSILON * (e.total() as f64 + 2.0)
+                    + transitions * steady.event_time_uncertainty / (span.max(1) as f64 * period),
+            );
+        }
+        steady_state_check = verify.then(|| SteadyStateCheck {
+            v_inf_transient: transient.converged.then(|| transient.v_inf()),
+            difference: transient
+                .converged
+                .then(|| transient.v_inf() - indicators.v_inf),
+            tolerance: error.v_inf.zip(transient.v_inf_error).map(|(a, b)| a + b),
+            periods: transient.periods(),
+        });
+        // Events of the start-up beyond the log's capacity: counted, not
+        // kept.
+        if let Some(log) = &event_log {
+            let logged = log.events.iter().filter(|e| e.period <= span).count();
+            event_log_omitted = transient.events(span).total().saturating_sub(logged as u64);
+        }
     }
-    let steady_state_check = verify.then(|| SteadyStateCheck {
-        v_inf_transient: transient.converged.then(|| transient.v_inf()),
-        difference: transient
-            .converged
-            .then(|| transient.v_inf() - indicators.v_inf),
-        tolerance: error.v_inf.zip(transient.v_inf_error).map(|(a, b)| a + b),
-        periods: transient.periods(),
-    });
     let event_log: Option<Vec<Event>> =
         event_log.map(|l| l.events.into_iter().filter(|e| e.period <= span).collect());
-    // Events of the start-up beyond the log's capacity: counted, not kept.
-    let event_log_omitted = event_log.as_ref().map_or(0, |l| {
-        transient
-            .events(span)
-            .total()
-            .saturating_sub(l.len() as u64)
-    });
     let simulation_time = clock.elapsed();
     Ok(Outcome::Steady(Box::new(RunReport {
         period,
@@ -685,6 +842,7 @@ fn simulate_timed<E: PeriodEngine>(
         power,
         error,
         work: engine.counters(),
+        map_evaluations,
         setup_time,
         simulation_time,
         wall_time: setup_time + simulation_time,
@@ -692,7 +850,7 @@ fn simulate_timed<E: PeriodEngine>(
         event_log_omitted,
         event_log,
         trajectory: trajectory.map(|t| t.segments),
-        transient: Some(transient),
+        transient,
         steady,
     })))
 }
@@ -789,7 +947,7 @@ fn startup_error(
 fn estimate_errors(
     signal: &Signal,
     steady: &SteadyState,
-    transient: &Transient,
+    transient: Option<&Transient>,
     ind: &SteadyIndicators,
     from_orbit: bool,
 ) -> ErrorEstimate {
@@ -800,11 +958,11 @@ fn estimate_errors(
     let rounding_rel = 16.0 * f64::EPSILON * segments;
     let rounding_v = rounding_velocity(signal, steady);
     let rounding_x = 8.0 * f64::EPSILON * segments * (signal.position_scale() + stats.step.abs());
-    let from_transient = || {
-        (transient.v_inf() - steady.v_inf)
-            .abs()
-            .max(steady.last_correction)
-            + transient.v_inf_error.unwrap_or(0.0)
+    // Without a simulated start-up (a v_inf-only run) there is none: the
+    // fast path needs the engine's bound.
+    let from_transient = |t: &Transient| {
+        (t.v_inf() - steady.v_inf).abs().max(steady.last_correction)
+            + t.v_inf_error.unwrap_or(0.0)
             + rounding_v
     };
     let velocity_error = match steady.velocity_uncertainty {
@@ -813,10 +971,10 @@ fn estimate_errors(
         Some(u) if !u.is_finite() => None,
         Some(_) => match engine_bound(signal, steady) {
             Some(b) => Some(b),
-            None if from_orbit && transient.converged => Some(from_transient()),
+            None if from_orbit => transient.filter(|t| t.converged).map(from_transient),
             None => None,
         },
-        None => Some(from_transient()),
+        None => transient.map(from_transient),
     };
     let Some(dvel) = velocity_error else {
         return ErrorEstimate::default();

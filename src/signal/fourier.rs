@@ -42,6 +42,11 @@ pub struct FourierSignal {
     /// Phases of the roots of `a_R` (the extrema of `v_R`), found once on
     /// demand.
     acceleration_zeros: OnceLock<Vec<f64>>,
+    /// `min v_R` and `max v_R`, from the roots of `a_R`, found once: every
+    /// rounding bound and the engine's tolerances scale with them.
+    velocity_range: OnceLock<(f64, f64)>,
+    /// The extrema of `x_R` (from the roots of `v_R`), found once.
+    extrema: OnceLock<Extrema>,
 }
 
 impl PartialEq for FourierSignal {
@@ -126,6 +131,8 @@ impl FourierSignal {
             vel,
             acc,
             acceleration_zeros: OnceLock::new(),
+            velocity_range: OnceLock::new(),
+            extrema: OnceLock::new(),
         }
     }
 
@@ -148,16 +155,18 @@ impl FourierSignal {
     }
 
     /// Smallest and largest rod velocity over a period, exact: the values at
-    /// the roots of `a_R`.
+    /// the roots of `a_R`. Found once (`O(n^2)`), then kept.
     pub fn velocity_range(&self) -> (f64, f64) {
-        let mut lo = self.velocity(0.0);
-        let mut hi = lo;
-        for tau in self.acceleration_roots(0.0) {
-            let v = self.velocity(tau);
-            lo = lo.min(v);
-            hi = hi.max(v);
-        }
-        (lo, hi)
+        *self.velocity_range.get_or_init(|| {
+            let mut lo = self.velocity(0.0);
+            let mut hi = lo;
+            for tau in self.acceleration_roots(0.0) {
+                let v = self.velocity(tau);
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+            (lo, hi)
+        })
     }
 
     /// The first `n` harmonics of the ideal signal of `shape`, with sigma
@@ -392,8 +401,13 @@ impl FourierSignal {
         )
     }
 
-    /// Exact extrema of `x_R` over a period, at the roots of `v_R`.
+    /// Exact extrema of `x_R` over a period, at the roots of `v_R`. Found
+    /// once, then kept.
     pub fn extrema(&self) -> Extrema {
+        *self.extrema.get_or_init(|| self.find_extrema())
+    }
+
+    fn find_extrema(&self) -> Extrema {
         let mut ext = Extrema {
             tau_min: 0.0,
             min: self.position(0.0),

@@ -34,10 +34,11 @@ pub struct CaseResult {
 /// `progress`, a progress bar is drawn on stderr if it is a terminal.
 pub fn run_cases(cases: &[Case], progress: bool) -> Vec<Result<CaseResult, Error>> {
     let bar = progress_bar(cases.len(), progress);
+    let signals = simulation::SignalCache::default();
     let results = cases
         .par_iter()
         .map(|case| {
-            let result = run_case(case);
+            let result = run_case_with(case, &signals);
             bar.inc(1);
             result
         })
@@ -48,7 +49,13 @@ pub fn run_cases(cases: &[Case], progress: bool) -> Vec<Result<CaseResult, Error
 
 /// Runs one case.
 pub fn run_case(case: &Case) -> Result<CaseResult, Error> {
-    simulation::run(&case.scene).map(|report| CaseResult {
+    run_case_with(case, &simulation::SignalCache::default())
+}
+
+/// Runs one case with its signal from `signals` (built there once for all
+/// cases that share it).
+fn run_case_with(case: &Case, signals: &simulation::SignalCache) -> Result<CaseResult, Error> {
+    signals.run(&case.scene).map(|report| CaseResult {
         index: case.index,
         values: case.values.clone(),
         report,
@@ -282,11 +289,12 @@ pub fn execute(sweep: &Sweep, options: &Options) -> Result<Summary, SweepError> 
             .enumerate(),
     );
     let stop = AtomicBool::new(false);
+    let signals = simulation::SignalCache::default();
     std::thread::scope(|scope| {
         let (sender, receiver) = mpsc::sync_channel::<(usize, usize, String, bool)>(4 * jobs);
         for _ in 0..jobs {
             let sender = sender.clone();
-            let (pending_cases, stop, layout) = (&pending_cases, &stop, &layout);
+            let (pending_cases, stop, layout, signals) = (&pending_cases, &stop, &layout, &signals);
             scope.spawn(move || {
                 loop {
                     if stop.load(Ordering::SeqCst) || interrupt::requested().is_some() {
@@ -298,7 +306,7 @@ pub fn execute(sweep: &Sweep, options: &Options) -> Result<Summary, SweepError> 
                         .next();
                     let Some((position, index)) = next else { break };
                     let Some(case) = sweep.case(index) else { break };
-                    let result = simulation::simulate(&case.scene);
+                    let result = signals.simulate(&case.scene);
                     let cells: Vec<Cell> = layout
                         .columns
                         .iter()

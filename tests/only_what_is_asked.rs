@@ -1,0 +1,221 @@
+//! Issue 12, items 2 and 3: a run computes only what its scene asks for.
+//! A `v_inf`-only scene takes the fixed point of the period map from rest
+//! without simulating the start-up (module docs of `simulation`), and
+//! reports the same `v_inf`, bit for bit, as the run that simulates it; a
+//! map whose search from rest lands on a far fixed point still gets the
+//! one the motion from rest reaches. Signals are shared between scenes
+//! that differ only in the motor.
+
+use std::sync::Arc;
+use stickslip::engine::{Direction, Mode, PeriodEngine, PeriodStart, WorkCounters};
+use stickslip::error::SimulationError;
+use stickslip::observer::{Observer, PeriodEnd};
+use stickslip::scene::Indicator;
+use stickslip::signal::SignalSpec;
+use stickslip::simulation::{self, Outcome, RunReport, SignalCache};
+use stickslip::{Motor, Scene, Signal};
+
+fn only_v_inf(scene: &Scene) -> Scene {
+    let mut s = scene.clone();
+    s.outputs.indicators = vec![Indicator::VInf];
+    s
+}
+
+fn steady(scene: &Scene) -> RunReport {
+    simulation::run(scene).expect("a steady state")
+}
+
+/// The default scene (the paper's section 7) and scenes of other signals
+/// and motors: the `v_inf`-only run simulates no start-up, needs fewer
+/// periods than the full run (for the default scene fewer than the 388 of
+/// the start-up to `p_0.99` alone), and gives the full run's
+/// `v_inf` and error estimate to the last bit.
+#[test]
+fn v_inf_only_runs_skip_the_start_up_and_give_the_same_bits() {
+    let mut scenes = vec![Scene::default()];
+    for (n, sigma, kappa) in [(8, true, 36.0), (16, false, 4.0), (3, true, 400.0)] {
+        scenes.push(Scene {
+            signal: SignalSpec::fourier(25e-6, kappa, n, sigma),
+            ..Scene::default()
+        });
+    }
+    let mut loaded = Scene::default();
+    loaded.motor.extra_acceleration = -30.0;
+    scenes.push(loaded);
+    for scene in &scenes {
+        let full = steady(scene);
+        let fast = steady(&only_v_inf(scene));
+        let label = format!(
+            "{:?} g_t = {}",
+            scene.signal, scene.motor.extra_acceleration
+        );
+        let startup = full.startup_periods.expect("the full run has a start-up");
+        assert!(
+            fast.transient.is_none(),
+            "{label}: a start-up was simulated"
+        );
+        assert_eq!(fast.startup_span(), 0, "{label}");
+        assert!(startup > 0, "{label}");
+        assert!(
+            fast.work.periods < full.work.periods,
+            "{label}: {} periods against {}",
+            fast.work.periods,
+            full.work.periods
+        );
+        assert_eq!(fast.work.periods, fast.map_evaluations, "{label}");
+        assert_eq!(
+            fast.indicators.v_inf.to_bits(),
+            full.indicators.v_inf.to_bits(),
+            "{label}"
+        );
+        assert_eq!(fast.error.v_inf, full.error.v_inf, "{label}");
+        // Nothing of the start-up was simulated, so none of its events is
+        // counted.
+        assert_eq!(fast.events().total(), 0, "{label}");
+    }
+    // The paper's headline number (section 7), as the full run gives it.
+    let fast = steady(&only_v_inf(&Scene::default()));
+    assert_eq!(fast.indicators.v_inf, 0.29713706315643806);
+    let startup = steady(&Scene::default()).startup_periods.unwrap();
+    assert!(fast.work.periods < startup / 10, "{}", fast.work.periods);
+}
+
+/// `verify_steady_state` still simulates the start-up to its own limit for
+/// a `v_inf`-only scene, and it agrees with the fixed point.
+#[test]
+fn verify_steady_state_still_simulates_the_start_up() {
+    let mut scene = only_v_inf(&Scene::default());
+    scene.run.verify_steady_state = true;
+    let r = steady(&scene);
+    let check = r.steady_state_check.expect("asked for");
+    assert_eq!(check.agrees(), Some(true));
+    let startup = steady(&Scene::default()).startup_periods.unwrap();
+    assert!(check.periods > startup, "{} periods", check.periods);
+}
+
+/// The map of tests/issue15.rs with three fixed points (in units of `a`:
+/// 1, 2 and 2.5; `g(x) = P(x) - x` is positive on `[0, 1)`, negative on
+/// `(1, 2)`, positive on `(2, 2.5)`): the search from rest lands on 2.5,
+/// the motion from rest stops at 1.
+struct ThreeFixedPoints {
+    signal: Signal,
+    a: f64,
+    periods: u64,
+}
+
+impl ThreeFixedPoints {
+    fn g(&self, x: f64) -> (f64, f64) {
+        if x <= 0.5 {
+            (0.2 + 0.01 * x, 0.01)
+        } else if x <= 1.0 {
+            (0.41 * (1.0 - x), -0.41)
+        } else if x <= 2.0 {
+            (-0.2 * (x - 1.0) * (2.0 - x), -0.2 * (3.0 - 2.0 * x))
+        } else if x <= 2.5 {
+            (0.2 * (x - 2.0) * (2.5 - x), 0.2 * (4.5 - 2.0 * x))
+        } else {
+            (-0.3 * (x - 2.5), -0.3)
+        }
+    }
+}
+
+impl PeriodEngine for ThreeFixedPoints {
+    fn signal(&self) -> &Signal {
+        &self.signal
+    }
+
+    fn run_period<O: Observer>(
+        &mut self,
+        period: u64,
+        start: PeriodStart,
+        observer: &mut O,
+    ) -> Result<PeriodEnd, SimulationError> {
+        self.periods += 1;
+        let x = start.velocity / self.a;
+        let (g, dg) = self.g(x);
+        let end = PeriodEnd {
+            period,
+            step: start.velocity * self.signal.period(),
+            velocity: (x + g) * self.a,
+            mode: Mode::Slip(Direction::Forward),
+            map_derivative: 1.0 + dg,
+        };
+        observer.period_end(&end);
+        Ok(end)
+    }
+
+    fn counters(&self) -> WorkCounters {
+        WorkCounters {
+            periods: self.periods,
+            ..WorkCounters::default()
+        }
+    }
+
+    fn zero_velocity_tolerance(&self) -> f64 {
+        0.0
+    }
+
+    fn last_velocity_uncertainty(&self) -> Option<f64> {
+        Some(0.0)
+    }
+}
+
+/// The march between rest and the searched fixed point (2.5) meets a point
+/// of `(1, 2)` that the map moves back: a nearer fixed point exists, and
+/// the `v_inf`-only run takes the orbit from rest, which stops at 1.
+#[test]
+fn v_inf_only_run_of_a_three_fixed_point_map_takes_the_nearest() {
+    let scene = Scene {
+        actuator: None,
+        ..only_v_inf(&Scene::default())
+    };
+    let motor = Motor::new(scene.motor).unwrap();
+    let signal = Signal::build(&scene.signal, &motor).unwrap();
+    let a = signal.velocity_range().1 / 5.0;
+    let engine = ThreeFixedPoints {
+        signal: signal.clone(),
+        a,
+        periods: 0,
+    };
+    let r = simulation::run_with(engine, &scene, &motor).unwrap();
+    assert!(
+        (r.indicators.v_inf / a - 1.0).abs() < 1e-9,
+        "{}",
+        r.indicators.v_inf / a
+    );
+    assert!(r.transient.is_some_and(|t| t.periods() > 0));
+}
+
+/// Scenes that differ only in the motor's sliding friction share one
+/// signal (it depends on the motor only through `a_0`), and a run with the
+/// shared signal gives the same result as one that builds its own; a
+/// different `a_0` builds another signal.
+#[test]
+fn signal_cache_shares_the_signal_between_motors() {
+    let cache = SignalCache::default();
+    let base = Scene::default();
+    let mut other_mu_d = base.clone();
+    other_mu_d.motor.mu_dynamic = 0.12;
+    let mut other_a0 = base.clone();
+    other_a0.motor.mu_static = 0.2;
+    let first = cache.get(&base).unwrap();
+    assert!(Arc::ptr_eq(&first, &cache.get(&other_mu_d).unwrap()));
+    assert!(!Arc::ptr_eq(&first, &cache.get(&other_a0).unwrap()));
+    for scene in [&base, &other_mu_d, &other_a0] {
+        let cached = cache.run(scene).unwrap();
+        let own = steady(scene);
+        assert_eq!(
+            cached.indicators.v_inf.to_bits(),
+            own.indicators.v_inf.to_bits()
+        );
+        let signal = cache.get(scene).unwrap();
+        let with = simulation::simulate_with_signal(scene, &signal).unwrap();
+        let Outcome::Steady(with) = with else {
+            panic!("a steady state")
+        };
+        assert_eq!(
+            with.indicators.v_inf.to_bits(),
+            own.indicators.v_inf.to_bits()
+        );
+    }
+}
