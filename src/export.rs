@@ -11,6 +11,7 @@
 //!   [`periods_table`]).
 
 use crate::compare::exact::{ExactState, PeriodRecord, event_name};
+use crate::error::Num;
 use crate::motor::Motor;
 use crate::signal::fourier::FourierSignal;
 use crate::signal::{Signal, SignalSpec};
@@ -451,16 +452,23 @@ pub fn write_requested(scene: &crate::Scene, request: &TrajectoryRequest) -> Res
         }
         (Some(_), None, Some(rate)) => {
             if !(rate > 0.0 && rate.is_finite()) {
-                return Err(format!("--sample-rate = {rate}: must be a positive number"));
+                return Err(format!(
+                    "--sample-rate = {}: must be a positive number",
+                    Num(rate)
+                ));
             }
             let (a, b) = request.periods.unwrap_or((1, 1));
             let (t0, t1) = ((a - 1) as f64 * period, b as f64 * period);
-            let n = ((t1 - t0) * rate).floor() as u64;
-            if n > MAX_SAMPLES {
+            // Compared as a float: a count beyond u64 must not wrap.
+            let samples = ((t1 - t0) * rate).floor();
+            if !(samples <= MAX_SAMPLES as f64) {
                 return Err(format!(
-                    "--sample-rate = {rate}: {n} samples over periods {a}..{b} is too many (at most {MAX_SAMPLES})"
+                    "--sample-rate = {}: {} samples over periods {a}..{b} is too many (at most {MAX_SAMPLES})",
+                    Num(rate),
+                    Num(samples)
                 ));
             }
+            let n = samples as u64;
             (0..=n)
                 .map(|i| t0 + i as f64 / rate)
                 .filter(|t| *t <= t1)
@@ -478,7 +486,8 @@ pub fn write_requested(scene: &crate::Scene, request: &TrajectoryRequest) -> Res
         && last > max as f64 * period
     {
         return Err(format!(
-            "time {last} s is after the simulated span of run.max_periods = {max} periods"
+            "time {} s is after the simulated span of run.max_periods = {max} periods",
+            Num(last)
         ));
     }
     let startup = if request.periods_series.is_some() {

@@ -525,25 +525,36 @@ pub fn moves_towards<E: PeriodEngine>(
 pub const NEAREST_MARCH_POINTS: u32 = 16;
 
 /// The check of a fixed point `v_star` found by the search from rest that
-/// replaces the start-up when no indicator needs it (docs/model.md section
-/// 10; the argument is in the module docs of [`crate::simulation`]): the
-/// map is evaluated at `NEAREST_MARCH_POINTS - 1` points evenly spaced
-/// between rest and `v_star` (those farther than `bound` from it), in
-/// order from rest. `Ok(false)` as soon as one of them is not moved
-/// towards `v_star` (`P(x) - x` zero or of the other sign): then a fixed
-/// point lies between rest and that point, nearer than `v_star`.
-/// `Ok(true)` when every point is moved towards `v_star`, with the number
-/// of map evaluations.
+/// replaces the start-up, or extends it past the orbit's last point `from`
+/// (docs/model.md section 10; the argument is in the module docs of
+/// [`crate::simulation`]): the map is evaluated, in order from `from`
+/// towards `v_star`, at the points `i v_star / 16` (`i = 1..15`) beyond
+/// `from`, then at `v_star (1 - 2^-j)` for `j = 5, 6, ...`, each only
+/// while it is farther than `bound` from `v_star`. The geometric points
+/// see a further pair of fixed points near `v_star` unless the pair is
+/// narrower than about half its distance to `v_star`. `Ok(false)` as soon
+/// as one point is not moved towards `v_star` (`P(x) - x` zero or of the
+/// other sign): then a fixed point lies between rest and that point,
+/// nearer than `v_star`. `Ok(true)` when every point is moved towards
+/// `v_star`, with the number of map evaluations.
 pub fn fixed_point_is_nearest<E: PeriodEngine>(
     engine: &mut E,
     v_star: f64,
     bound: f64,
+    from: f64,
 ) -> Result<(bool, u32), SimulationError> {
+    let uniform = (1..NEAREST_MARCH_POINTS)
+        .map(|i| v_star * (f64::from(i) / f64::from(NEAREST_MARCH_POINTS)));
+    // 1 - 2^-j for j >= 5 continues the uniform points past 15/16.
+    let geometric = (5..60).map(|j| v_star * (1.0 - (0.5f64).powi(j)));
     let mut evaluations = 0;
-    for i in 1..NEAREST_MARCH_POINTS {
-        let x = v_star * (f64::from(i) / f64::from(NEAREST_MARCH_POINTS));
+    for x in uniform.chain(geometric) {
         if (v_star - x).abs() <= bound {
             break;
+        }
+        // Points the orbit from rest has passed are covered by it.
+        if (x - from) * v_star.signum() <= 0.0 {
+            continue;
         }
         let (p, _) = period_map(engine, x)?;
         evaluations += 1;

@@ -116,10 +116,12 @@ pub fn to_json(outcome: &Outcome, scene: &Scene) -> Value {
     match outcome {
         Outcome::Steady(r) => steady_json(&mut m, r),
         Outcome::RunAway { direction, state } => {
-            unsettled_json(&mut m, state);
+            unsettled_json(&mut m, state, scene.run.verify_steady_state);
             m.insert("direction".into(), json!(direction_name(*direction)));
         }
-        Outcome::NotConverged(state) => unsettled_json(&mut m, state),
+        Outcome::NotConverged(state) => {
+            unsettled_json(&mut m, state, scene.run.verify_steady_state)
+        }
     }
     times_json(&mut m, outcome.times());
     Value::Object(m)
@@ -132,7 +134,10 @@ fn direction_name(d: Direction) -> &'static str {
     }
 }
 
-fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled) {
+/// Without a steady state the keys of one keep their place with `null`
+/// (the event counts of a start-up and of a steady period, the fixed-point
+/// work, the verification), so that every outcome has the same keys.
+fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled, verify: bool) {
     let mut err = Map::new();
     for indicator in &u.requested {
         m.insert(indicator.name().into(), Value::Null);
@@ -151,6 +156,12 @@ fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled) {
     m.insert("f0".into(), number(1.0 / u.period));
     m.insert("f_max".into(), option_number(u.f_max));
     m.insert("periods_simulated".into(), json!(u.periods_simulated));
+    m.insert("events".into(), Value::Null);
+    m.insert("events_per_steady_period".into(), Value::Null);
+    if verify {
+        m.insert("v_inf_transient".into(), Value::Null);
+        m.insert("steady_state_check".into(), Value::Null);
+    }
     m.insert("error_estimate".into(), Value::Object(err));
     m.insert(
         "work".into(),
@@ -159,6 +170,8 @@ fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled) {
             "events": u.work.events.total(),
             "evaluations": u.work.evaluations,
             "root_iterations": u.work.root_iterations,
+            "fixed_point_iterations": Value::Null,
+            "map_evaluations": Value::Null,
         }),
     );
 }

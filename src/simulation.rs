@@ -58,8 +58,12 @@
 //! `run.verify_steady_state`. Otherwise (a `v_inf`-only scene, or one that
 //! asks only for steady-state indicators) an established fixed point `v*`
 //! of the search from rest is checked, instead of by the start-up, by a
-//! march of [`indicators::NEAREST_MARCH_POINTS`]` - 1` map evaluations at
-//! `x_i = i v* / 16` from rest towards `v*` ([`indicators::fixed_point_is_nearest`]):
+//! march of map evaluations from rest towards `v*`
+//! ([`indicators::fixed_point_is_nearest`]): at `x_i = i v* / 16`
+//! (`i = 1..15`), then at `v* (1 - 2^-j)` for `j = 5, 6, ...` while
+//! farther than the fixed point's bound from `v*`. When the start-up is
+//! simulated up to `p_0.99`, the same march runs from the orbit's last
+//! point on, since the orbit covers what lies behind it:
 //!
 //! 4. a point `x` between rest and `v*` that the map does not move towards
 //!    `v*` (`P(x) <= x` for `v* > 0`) proves a fixed point in `[0, x]`:
@@ -70,13 +74,15 @@
 //!    point lies in `[x_i, x_i + g(x_i)]`: for `v` there,
 //!    `P(v) >= P(x_i) = x_i + g(x_i) >= v`, equality only at the right
 //!    end, which is `P(x_i)`, and `P(P(x_i)) >= P(x_i)`, so the orbit from
-//!    `x_i` goes on; with `x_0 = 0` this covers `[0, P(0)]`;
-//! 6. what 4. and 5. leave open is a pair of further fixed points (an
-//!    interval where `g` has the sign opposite to `P(0) - 0`) lying between
-//!    two march points and narrower than `v* / 16`, or within the first
-//!    march point's gap to `v*`: the march does not see it, as the
-//!    start-up to `p_0.99` does not see one above `0.99 v*`. This is not
-//!    a proof: `run.verify_steady_state` settles such a doubt by
+//!    `x_i` goes on; with `x_0 = 0` this covers `[0, P(0)]`, and the
+//!    orbit's own points cover `[0, u_k]`;
+//! 6. what 4. and 5. leave open is a further pair of fixed points (an
+//!    interval where `g` has the sign opposite to `P(0) - 0`) that falls
+//!    between two march points: narrower than `v* / 16` far from `v*`,
+//!    and narrower than about half its distance to `v*` near it (the
+//!    geometric points). Covering every gap by 5. would take about as many
+//!    map evaluations as the start-up itself, so this is not a proof for
+//!    such pairs: `run.verify_steady_state` settles the doubt by
 //!    simulating the start-up to its own limit and comparing.
 //!
 //! The reported `v_inf`, its error estimate (from the engine's bound at the
@@ -686,6 +692,7 @@ fn simulate_timed<E: PeriodEngine>(
                     &mut engine,
                     steady.boundary_velocity,
                     bound,
+                    0.0,
                 )?;
                 map_evaluations += u64::from(marched);
                 nearest.then_some((steady, None))
@@ -708,7 +715,27 @@ fn simulate_timed<E: PeriodEngine>(
                     && (transient.v_inf() - steady.v_inf).abs()
                         > bound + transient.v_inf_error.unwrap_or(0.0);
                 let passes = orbit_passes(&transient, seen, steady.boundary_velocity, bound);
-                if transient.run_away.is_some() || !(settled_elsewhere || passes) {
+                // Between the orbit's last point and the fixed point, the
+                // march of the v_inf-only check looks for a nearer one.
+                let last = transient
+                    .boundary_velocities
+                    .get((seen as usize).saturating_sub(1))
+                    .or(transient.boundary_velocities.last())
+                    .copied()
+                    .unwrap_or(0.0);
+                let nearest = if transient.run_away.is_some() || settled_elsewhere || passes {
+                    false
+                } else {
+                    let (nearest, marched) = indicators::fixed_point_is_nearest(
+                        &mut engine,
+                        steady.boundary_velocity,
+                        bound,
+                        last,
+                    )?;
+                    map_evaluations += u64::from(marched);
+                    nearest
+                };
+                if transient.run_away.is_some() || nearest {
                     Some((steady, Some(transient)))
                 } else {
                     None

@@ -37,7 +37,7 @@ pub(crate) struct ExportArgs {
     #[arg(long, value_name = "FILE")]
     times: Option<PathBuf>,
     /// Sample rate for --trajectory (Hz), over --periods.
-    #[arg(long, value_name = "HZ")]
+    #[arg(long, value_name = "HZ", allow_negative_numbers = true)]
     sample_rate: Option<f64>,
     /// Periods A..B sampled with --sample-rate (default 1..1).
     #[arg(long, value_name = "A..B", value_parser = super::compare::parse_range)]
@@ -58,14 +58,30 @@ pub(crate) fn load(path: Option<&Path>) -> Result<Scene, Failure> {
 
 pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
     let e = args.export;
-    if let Some(scene) = &args.scene {
-        for output in [&args.output, &e.trajectory, &e.periods_series]
-            .into_iter()
-            .flatten()
+    // No output may be an input (the scene, the sample times) or another
+    // output of the same run.
+    let inputs: Vec<&Path> = args
+        .scene
+        .iter()
+        .chain(&e.times)
+        .map(PathBuf::as_path)
+        .collect();
+    let outputs: Vec<&Path> = [&args.output, &e.trajectory, &e.periods_series]
+        .into_iter()
+        .flatten()
+        .map(PathBuf::as_path)
+        .collect();
+    for (i, output) in outputs.iter().enumerate() {
+        refuse_output_over_input(output, &inputs)?;
+        if let Some(other) = outputs[..i]
+            .iter()
+            .find(|o| refuse_output_over_input(output, &[o]).is_err())
         {
-            let mut inputs = vec![scene.as_path()];
-            inputs.extend(e.times.as_deref());
-            refuse_output_over_input(output, &inputs)?;
+            return Err(format!(
+                "{} is named as two outputs (also as {}): name another file for one of them",
+                output.display(),
+                other.display()
+            ));
         }
     }
     let mut scene = load(args.scene.as_deref())?;

@@ -50,7 +50,10 @@ pub(crate) fn sweep(args: SweepArgs, streams: &mut Streams<'_>) -> Result<u8, Fa
     let output = args
         .output
         .unwrap_or_else(|| sweep.default_output(args.shard));
-    super::refuse_output_over_input(&output, &[args.file.as_path()])?;
+    let inputs: Vec<&std::path::Path> = std::iter::once(args.file.as_path())
+        .chain(sweep.base_path())
+        .collect();
+    super::refuse_output_over_input(&output, &inputs)?;
     if !args.quiet {
         super::print_warnings(sweep.base(), streams);
     }

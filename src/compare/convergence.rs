@@ -58,8 +58,15 @@ pub fn fit(steps: &[f64], errors: &[f64], tolerance: f64) -> OrderFit {
         ));
         return fit;
     }
-    if errors.iter().any(|e| e.is_nan() || *e <= 0.0) {
+    if errors.iter().any(|e| *e <= 0.0) {
         fit.reason = Some("an error is zero: no logarithm to fit".to_owned());
+        return fit;
+    }
+    if errors.iter().any(|e| !e.is_finite()) {
+        fit.reason = Some(
+            "an error is not finite (a relative error of an exact value 0): no order to fit"
+                .to_owned(),
+        );
         return fit;
     }
     let x: Vec<f64> = steps.iter().map(|h| h.ln()).collect();
@@ -76,7 +83,9 @@ pub fn fit(steps: &[f64], errors: &[f64], tolerance: f64) -> OrderFit {
     fit.order = Some(q);
     fit.standard_error = Some(se);
     let span = distinct[distinct.len() - 1] / distinct[0];
-    fit.reason = if span < 2.0 {
+    fit.reason = if !(q.is_finite() && se.is_finite()) {
+        Some("the fit is not finite: the errors cannot support an order".to_owned())
+    } else if span < 2.0 {
         Some(format!(
             "the steps span only a factor of {span:.3}; spread them over at least 2"
         ))

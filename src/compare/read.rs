@@ -297,21 +297,27 @@ pub fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>, Compar
             .is_some_and(|l| l.trim().parse::<f64>().is_ok())
     });
     let mut values = Vec::new();
+    let mut numbers = Vec::new();
     if headerless {
         for (i, line) in text.unwrap_or_default().lines().enumerate() {
             let cell = line.trim();
             if cell.is_empty() || cell.starts_with('#') {
                 continue;
             }
-            let v: f64 = cell.parse().map_err(|_| {
-                CompareError::data(
-                    &file,
-                    Some("t"),
-                    Some(format!("line {}", i + 1)),
-                    format!("`{cell}` is not a number"),
-                )
-            })?;
+            let v: f64 = cell
+                .parse()
+                .ok()
+                .filter(|v: &f64| v.is_finite())
+                .ok_or_else(|| {
+                    CompareError::data(
+                        &file,
+                        Some("t"),
+                        Some(format!("line {}", i + 1)),
+                        format!("`{cell}` is not a finite number"),
+                    )
+                })?;
             values.push(v * options.time_unit.factor());
+            numbers.push(i + 1);
         }
         let data = UserData {
             t: Some(Column {
@@ -324,7 +330,7 @@ pub fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>, Compar
             }),
             ..Default::default()
         };
-        validate(&data, &file, &Origin::Csv, &[], &[])?;
+        validate(&data, &file, &Origin::Csv, &numbers, &[])?;
         return Ok(data.t.map(|c| c.values).unwrap_or_default());
     }
     let (columns, lines, origin) = if path

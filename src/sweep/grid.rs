@@ -444,6 +444,7 @@ impl Case {
 pub struct Sweep {
     origin: String,
     base: Scene,
+    base_path: Option<PathBuf>,
     axes: Vec<(Axis, Vec<AxisValue>)>,
     format: Format,
     len: usize,
@@ -571,10 +572,16 @@ impl Sweep {
         Ok(Sweep {
             origin: origin.to_owned(),
             base,
+            base_path: file.base.as_ref().map(|p| dir.join(p)),
             axes,
             format: outputs.format.unwrap_or_default(),
             len,
         })
+    }
+
+    /// The base scene's file, if the sweep names one.
+    pub fn base_path(&self) -> Option<&Path> {
+        self.base_path.as_deref()
     }
 
     /// Case `index` (`0 <= index < len()`), made from its index; `None`
