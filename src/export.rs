@@ -461,7 +461,7 @@ pub fn write_requested(scene: &crate::Scene, request: &TrajectoryRequest) -> Res
             let (t0, t1) = ((a - 1) as f64 * period, b as f64 * period);
             // Compared as a float: a count beyond u64 must not wrap.
             let samples = ((t1 - t0) * rate).floor();
-            if !(samples <= MAX_SAMPLES as f64) {
+            if samples.is_nan() || samples > MAX_SAMPLES as f64 {
                 return Err(format!(
                     "--sample-rate = {}: {} samples over periods {a}..{b} is too many (at most {MAX_SAMPLES})",
                     Num(rate),
