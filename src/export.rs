@@ -19,9 +19,11 @@ use serde::Serialize;
 use serde_json::{Value, json};
 use std::fmt::Write as _;
 
-/// Most samples `--sample-rate` may ask for: the trajectory is built in
-/// memory (about 150 bytes a sample) before it is written atomically.
-const MAX_SAMPLES: u64 = 10_000_000;
+/// Most samples a trajectory export may have (`--times` or
+/// `--sample-rate`): the exact states and the table are built in memory,
+/// about 500 bytes a sample, before the file is written atomically; longer
+/// spans are exported in several runs (`--periods`).
+const MAX_SAMPLES: u64 = 2_000_000;
 
 /// One harmonic of the simulated series.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -481,6 +483,12 @@ pub fn write_requested(scene: &crate::Scene, request: &TrajectoryRequest) -> Res
             return Err("--trajectory needs --times FILE or --sample-rate HZ".to_owned());
         }
     };
+    if times.len() as u64 > MAX_SAMPLES {
+        return Err(format!(
+            "--times: {} samples, more than the {MAX_SAMPLES} one export may have; split the file",
+            times.len()
+        ));
+    }
     let max = scene.run.max_periods;
     if let Some(&last) = times.last()
         && last > max as f64 * period
