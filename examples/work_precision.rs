@@ -125,9 +125,18 @@ fn median(mut xs: Vec<f64>) -> f64 {
 }
 
 /// One run: engine set-up plus analysis, timed.
-fn run_once(signal: &Signal, motor: &Motor, scene: &Scene, engine: Engine) -> (RunReport, f64) {
-    fn go<E: PeriodEngine>(e: E, scene: &Scene, motor: &Motor) -> RunReport {
-        simulation::run_with(e, scene, motor).expect("the study's scenes run")
+fn run_once(
+    signal: &Signal,
+    motor: &Motor,
+    scene: &Scene,
+    engine: Engine,
+) -> Result<(RunReport, f64), stickslip::Error> {
+    fn go<E: PeriodEngine>(
+        e: E,
+        scene: &Scene,
+        motor: &Motor,
+    ) -> Result<RunReport, stickslip::Error> {
+        simulation::run_with(e, scene, motor)
     }
     let clock = Instant::now();
     let report = match engine {
@@ -136,28 +145,29 @@ fn run_once(signal: &Signal, motor: &Motor, scene: &Scene, engine: Engine) -> (R
                 time_tolerance: tol.unwrap_or(EventOptions::default().time_tolerance),
                 ..EventOptions::default()
             };
-            go(EventEngine::new(signal, motor, options), scene, motor)
+            go(EventEngine::new(signal, motor, options), scene, motor)?
         }
         Engine::Fixed(steps) => {
             let options = FixedStepOptions {
                 steps_per_harmonic: steps,
                 ..FixedStepOptions::default()
             };
-            go(FixedStepEngine::new(signal, motor, options), scene, motor)
+            go(FixedStepEngine::new(signal, motor, options), scene, motor)?
         }
     };
-    (report, clock.elapsed().as_secs_f64())
+    Ok((report, clock.elapsed().as_secs_f64()))
 }
 
 /// Median wall time over enough runs to fill about a second (3 to 9 runs;
-/// a single run when one takes longer than a second).
+/// a single run when one takes longer than a second). A run without a
+/// steady state (a coarse reference may not settle) is an error.
 fn measure(
     signal: &Signal,
     motor: &Motor,
     scene: &Scene,
     engine: Engine,
-) -> (RunReport, f64, usize) {
-    let (report, first) = run_once(signal, motor, scene, engine);
+) -> Result<(RunReport, f64, usize), stickslip::Error> {
+    let (report, first) = run_once(signal, motor, scene, engine)?;
     let runs = if first > 1.0 {
         1
     } else {
@@ -165,9 +175,9 @@ fn measure(
     };
     let mut times = vec![first];
     for _ in 1..runs {
-        times.push(run_once(signal, motor, scene, engine).1);
+        times.push(run_once(signal, motor, scene, engine)?.1);
     }
-    (report, median(times), runs)
+    Ok((report, median(times), runs))
 }
 
 fn relative(value: f64, exact: f64) -> f64 {
@@ -180,7 +190,8 @@ fn main() {
     let mut summary = String::new();
     for (ci, case) in cases.iter().enumerate() {
         let (signal, motor) = simulation::build(&case.scene).expect("valid scene");
-        let (exact, wall, runs) = measure(&signal, &motor, &case.scene, Engine::Event(None));
+        let (exact, wall, runs) = measure(&signal, &motor, &case.scene, Engine::Event(None))
+            .expect("the event engine runs");
         let v_exact = exact.indicators.v_inf;
         let bound = exact.error.v_inf.unwrap_or(0.0);
         let p_exact = exact.startup_periods;
@@ -209,13 +220,20 @@ fn main() {
         ));
         for tol in TIME_TOLERANCES {
             let engine = Engine::Event(Some(tol));
-            let (r, wall, runs) = measure(&signal, &motor, &case.scene, engine);
+            let (r, wall, runs) =
+                measure(&signal, &motor, &case.scene, engine).expect("the event engine runs");
             let v_error = ((r.indicators.v_inf - v_exact).abs() + bound) / v_exact.abs();
             points.push(point(engine, &r, wall, runs, v_error));
         }
         for steps in STEPS {
             let engine = Engine::Fixed(steps);
-            let (r, wall, runs) = measure(&signal, &motor, &case.scene, engine);
+            let (r, wall, runs) = match measure(&signal, &motor, &case.scene, engine) {
+                Ok(m) => m,
+                Err(e) => {
+                    println!("{} {}: {e}: left out", case.key, engine.setting());
+                    continue;
+                }
+            };
             let v_error = relative(r.indicators.v_inf, v_exact);
             points.push(point(engine, &r, wall, runs, v_error));
         }
@@ -239,8 +257,13 @@ fn headline(signal: &Signal, motor: &Motor, scene: &Scene, v_exact: f64, bound: 
     let (mut event_times, mut fixed_times) = (Vec::new(), Vec::new());
     let mut fixed_v = 0.0;
     for _ in 0..pairs {
-        event_times.push(run_once(signal, motor, scene, Engine::Event(None)).1);
-        let (r, t) = run_once(signal, motor, scene, Engine::Fixed(PAPER_STEPS));
+        event_times.push(
+            run_once(signal, motor, scene, Engine::Event(None))
+                .expect("the event engine runs")
+                .1,
+        );
+        let (r, t) = run_once(signal, motor, scene, Engine::Fixed(PAPER_STEPS))
+            .expect("the reference at the paper's resolution runs");
         fixed_v = r.indicators.v_inf;
         fixed_times.push(t);
     }

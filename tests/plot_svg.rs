@@ -112,6 +112,27 @@ fn lightness(color: &str) -> f64 {
     0.2126 * c(1) + 0.7152 * c(3) + 0.0722 * c(5)
 }
 
+/// A horizontal text lies on the page: its extent from the shipped font's
+/// metrics, by its anchor, inside `[0, width]` (user units).
+fn on_the_page(node: &roxmltree::Node<'_, '_>, width: f64, what: &str) {
+    if node.attribute("transform").is_some() {
+        return;
+    }
+    let x: f64 = node.attribute("x").unwrap().parse().unwrap();
+    let size: f64 = node.attribute("font-size").unwrap().parse().unwrap();
+    let text = node.text().unwrap_or("");
+    let w = stickslip::plot::text_width(text, size);
+    let (left, right) = match node.attribute("text-anchor").unwrap_or("start") {
+        "middle" => (x - w / 2.0, x + w / 2.0),
+        "end" => (x - w, x),
+        _ => (x, x + w),
+    };
+    assert!(
+        left >= -0.5 && right <= width + 0.5,
+        "{what}: \"{text}\" runs off the page ({left:.1} .. {right:.1} of {width:.1})"
+    );
+}
+
 /// Checks one SVG; `what` names it in failures.
 fn check(svg: &str, what: &str) {
     let doc = roxmltree::Document::parse(svg).unwrap_or_else(|e| panic!("{what}: {e}"));
@@ -135,6 +156,7 @@ fn check(svg: &str, what: &str) {
         }
         if node.tag_name().name() == "text" {
             texts += 1;
+            on_the_page(&node, view[2], what);
             assert!(
                 node.ancestors().any(|a| a.attribute("font-size").is_some()),
                 "{what}: text without a size"

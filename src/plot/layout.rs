@@ -72,9 +72,9 @@ impl Plot {
             legend::draw(&mut canvas, &self.legend, (pad, y), inner, style);
             y += legend::height(&self.legend, inner, style) + 0.2 * f;
         }
-        for line in &self.notes {
+        for line in self.notes.iter().flat_map(|n| wrap(n, TEXT_FIT * inner, f)) {
             canvas.text(
-                line,
+                &line,
                 (pad, y + DIGIT_HEIGHT * f + 0.1 * f),
                 f,
                 Anchor::Start,
@@ -82,29 +82,53 @@ impl Plot {
             );
             y += 1.3 * f;
         }
-        let rows = self.panels.len().div_ceil(self.columns).max(1);
-        let cell_w = inner / self.columns as f64;
-        let gutters: Vec<Gutter> = self.panels.iter().map(|p| Gutter::of(p, style)).collect();
-        // One left gutter per column and one top/bottom per row, so that
-        // the plotting areas line up.
-        let left: Vec<f64> = (0..self.columns)
-            .map(|c| column_max(&gutters, self.columns, c, |g| g.left))
-            .collect();
-        let right: Vec<f64> = (0..self.columns)
-            .map(|c| column_max(&gutters, self.columns, c, |g| g.right))
-            .collect();
+        let mut gutters: Vec<Gutter> = self.panels.iter().map(|p| Gutter::of(p, style)).collect();
+        // The plot's columns, fewer when its panels would be narrower than
+        // their x-axis descriptions (a wide figure set in one column).
+        let needed = self
+            .panels
+            .iter()
+            .map(|p| text_width(&p.x.label, f) / TEXT_FIT)
+            .fold(10.0 * f, f64::max);
+        let mut columns = self.columns.min(self.panels.len().max(1));
+        let (left, right, plot_w) = loop {
+            let cell_w = inner / columns as f64;
+            // One left gutter per column and one top/bottom per row, so
+            // that the plotting areas line up.
+            let left: Vec<f64> = (0..columns)
+                .map(|c| column_max(&gutters, columns, c, |g| g.left))
+                .collect();
+            let right: Vec<f64> = (0..columns)
+                .map(|c| column_max(&gutters, columns, c, |g| g.right))
+                .collect();
+            let plot_w = (0..columns)
+                .map(|c| cell_w - left[c] - right[c])
+                .fold(f64::INFINITY, f64::min)
+                .max(f);
+            if plot_w >= needed || columns == 1 {
+                break (left, right, plot_w);
+            }
+            columns -= 1;
+        };
+        let rows = self.panels.len().div_ceil(columns).max(1);
+        let cell_w = inner / columns as f64;
+        // Panel titles wrap within their panel; the row's top gutter holds
+        // the most lines.
+        let title_width = |c: usize| TEXT_FIT * (plot_w + right[c]);
+        for (i, (g, panel)) in gutters.iter_mut().zip(&self.panels).enumerate() {
+            if let Some(title) = &panel.title {
+                let lines = wrap(title, title_width(i % columns), f).len();
+                g.top = 0.25 * f + 1.25 * f * lines as f64;
+            }
+        }
         let row_max = |r: usize, f: fn(&Gutter) -> f64| {
             gutters
                 .iter()
-                .skip(r * self.columns)
-                .take(self.columns)
+                .skip(r * columns)
+                .take(columns)
                 .map(f)
                 .fold(0.0, f64::max)
         };
-        let plot_w = (0..self.columns)
-            .map(|c| cell_w - left[c] - right[c])
-            .fold(f64::INFINITY, f64::min)
-            .max(f);
         let fixed: f64 = (0..rows)
             .map(|r| row_max(r, |g| g.top) + row_max(r, |g| g.bottom))
             .sum();
@@ -113,7 +137,7 @@ impl Plot {
             None => plot_w * self.aspect,
         };
         for (i, panel) in self.panels.iter().enumerate() {
-            let (r, c) = (i / self.columns, i % self.columns);
+            let (r, c) = (i / columns, i % columns);
             let top: f64 = y
                 + (0..r)
                     .map(|k| row_max(k, |g| g.top) + plot_h + row_max(k, |g| g.bottom))
@@ -131,6 +155,7 @@ impl Plot {
                 },
                 style,
                 left[c],
+                title_width(c),
             );
         }
         let height = y
@@ -141,6 +166,31 @@ impl Plot {
         let height_mm = style.height_mm.unwrap_or(height / super::style::PT_PER_MM);
         canvas.finish((style.width_mm, height_mm), metadata)
     }
+}
+
+/// Renderers that hint glyph advances to whole pixels set text a few per
+/// cent wider than its metrics: wrapped text fills this much of its width.
+const TEXT_FIT: f64 = 0.94;
+
+/// `text` broken at spaces into lines no wider than `width` (pt) at
+/// `size` pt (a single word wider than that stays whole).
+fn wrap(text: &str, width: f64, size: f64) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in text.split(' ') {
+        let candidate = if line.is_empty() {
+            word.to_owned()
+        } else {
+            format!("{line} {word}")
+        };
+        if !line.is_empty() && text_width(&candidate, size) > width {
+            lines.push(std::mem::replace(&mut line, word.to_owned()));
+        } else {
+            line = candidate;
+        }
+    }
+    lines.push(line);
+    lines
 }
 
 fn column_max(gutters: &[Gutter], columns: usize, c: usize, f: fn(&Gutter) -> f64) -> f64 {
@@ -213,7 +263,14 @@ fn fractions(panel: &Panel, (x, y): (f64, f64)) -> (f64, f64) {
     )
 }
 
-fn draw_panel(canvas: &mut Canvas, panel: &Panel, area: Rect, style: &Style, left_gutter: f64) {
+fn draw_panel(
+    canvas: &mut Canvas,
+    panel: &Panel,
+    area: Rect,
+    style: &Style,
+    left_gutter: f64,
+    title_width: f64,
+) {
     let (f, t) = (style.font_pt, style.tick_pt());
     let tick_len = 0.3 * f;
     let axis_pt = 0.6 * style.line_pt.min(1.5);
@@ -296,13 +353,31 @@ fn draw_panel(canvas: &mut Canvas, panel: &Panel, area: Rect, style: &Style, lef
         -90.0,
     );
     if let Some(title) = &panel.title {
-        canvas.text(title, (area.x, area.y - 0.45 * f), f, Anchor::Start, 0.0);
+        let lines = wrap(title, title_width, f);
+        for (k, line) in lines.iter().enumerate() {
+            let above = (lines.len() - 1 - k) as f64 * 1.25 * f;
+            canvas.text(
+                line,
+                (area.x, area.y - 0.45 * f - above),
+                f,
+                Anchor::Start,
+                0.0,
+            );
+        }
     }
     for note in &panel.notes {
         let (fx, fy) = fractions(panel, note.at);
         if inside(fx) && inside(fy) {
             let (px, py) = area.at(fx, fy);
-            canvas.text(&note.text, (px, py), f, note.anchor, 0.0);
+            // A note that would run out of the panel is set against its
+            // anchor's other side, so it never covers a neighbour.
+            let w = text_width(&note.text, f);
+            let anchor = match note.anchor {
+                Anchor::Start if px + w > area.x + area.w => Anchor::End,
+                Anchor::End if px - w < area.x => Anchor::Start,
+                a => a,
+            };
+            canvas.text(&note.text, (px, py), f, anchor, 0.0);
         }
     }
 }
@@ -388,5 +463,21 @@ pub fn fitted(label: &str, values: impl IntoIterator<Item = f64>, log: bool, fra
     } else {
         let pad = (hi - lo) * frac;
         Axis::linear(label, (lo - pad, hi + pad))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn notes_wrap_at_spaces_within_the_width() {
+        let lines = wrap(
+            "one two three four five six",
+            text_width("one two three", 8.0),
+            8.0,
+        );
+        assert_eq!(lines, ["one two three", "four five six"]);
+        assert_eq!(wrap("unbreakable", 1.0, 8.0), ["unbreakable"]);
     }
 }

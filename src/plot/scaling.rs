@@ -204,13 +204,9 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
         }
     }
     let quantities = [
-        ("(a) velocity (39), slope ½ expected", "v∞ (m/s)", 0.5),
-        ("(b) step (38), slope 1 expected", "x∞ = v∞·T (m)", 1.0),
-        (
-            "(c) start-up time (42), slope ½ expected",
-            "T·p₀.₉₉ (s)",
-            0.5,
-        ),
+        ("(a) v∞ (39): slope ½ expected", "v∞ (m/s)", 0.5),
+        ("(b) x∞ (38): slope 1 expected", "x∞ = v∞·T (m)", 1.0),
+        ("(c) T·p₀.₉₉ (42): slope ½ expected", "T·p₀.₉₉ (s)", 0.5),
     ];
     const SHAPE_MARKERS: [Marker; 3] = [Marker::Circle, Marker::Square, Marker::Triangle];
     let mut panels = Vec::new();

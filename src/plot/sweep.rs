@@ -79,7 +79,7 @@ impl Flag {
     fn label(&self) -> String {
         match self {
             Flag::Failed => "failed".to_owned(),
-            Flag::Unsettled(r) => format!("no steady state: {r}"),
+            Flag::Unsettled(r) => r.clone(),
             Flag::NoValue => "no value".to_owned(),
             Flag::OffLogAxis => "≤ 0, off the log axis".to_owned(),
         }
@@ -131,6 +131,16 @@ fn column_index(
 
 /// Reads the sweep output at `path` and draws it as `spec` says.
 pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure, PlotError> {
+    for (log, flag, refs) in [
+        (spec.log_x, "--ref-x", &spec.ref_x),
+        (spec.log_y, "--ref-y", &spec.ref_y),
+    ] {
+        if let Some(v) = refs.iter().find(|v| !v.is_finite() || (log && **v <= 0.0)) {
+            return Err(PlotError::Argument(format!(
+                "{flag} {v}: a reference line must be finite, and positive on a log axis (--log-x, --log-y)"
+            )));
+        }
+    }
     let file = std::fs::File::open(path)
         .map_err(|e| PlotError::Argument(format!("{}: {e}", path.display())))?;
     let mut reader = csv::ReaderBuilder::new()
@@ -274,7 +284,7 @@ fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &Path) -> Result<Fig
                 spec.y,
                 spec.x
             ),
-            "status: ok, or why the row has no point (failed, no steady state: <regime>, no value, off the log axis); such rows are drawn on the bottom edge.",
+            "status: ok, or why the row has no point (failed; its regime without a steady state, e.g. run-away; no value; off the log axis); such rows are drawn on the bottom edge.",
         ],
         &["facet", "series", "x", "y", "status"],
     );
@@ -356,7 +366,7 @@ fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &Path) -> Result<Fig
                 .iter()
                 .filter(|r| r.y.as_ref().err() == Some(flag))
                 .count();
-            let label = format!("{} ({count} rows, on the bottom edge)", flag.label());
+            let label = format!("{} ({count}, at the bottom)", flag.label());
             panel
                 .series
                 .push(Series::points(Some(&label), pts, flag.look(k)));
