@@ -6,14 +6,14 @@
 //! drawn from the grid of `examples/sweeps/section7.toml`, run in parallel
 //! with [`stickslip::sweep`]. The same inputs give the same bytes.
 //!
-//! `cargo run --release --example paper_figures -- [OUTPUT_DIR] [--format svg|pdf|png]`
+//! `cargo run --release --example paper_figures -- [OUTPUT_DIR] [--format svg|pdf|png] [--style PRESET]`
 //! (default `plots/` in the crate, SVG).
 
 use clap::Parser;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stickslip::plot::performance::GridPoint;
-use stickslip::plot::{self, Figure};
+use stickslip::plot::{self, Figure, Preset};
 use stickslip::signal::SignalSpec;
 use stickslip::sweep::{self, Axis};
 use stickslip::{Motor, Scene};
@@ -28,6 +28,10 @@ struct Args {
     /// File format of the figures (the CSV is always written beside).
     #[arg(long, default_value = "svg", value_parser = ["svg", "pdf", "png"])]
     format: String,
+    /// Print preset for every figure (default: each figure's own journal
+    /// preset).
+    #[arg(long, value_parser = ["single-column", "double-column", "slide"])]
+    style: Option<String>,
     /// Resolution of PNG output (pixels per inch).
     #[arg(long, default_value_t = 300.0)]
     dpi: f64,
@@ -67,7 +71,12 @@ fn main() -> Result<()> {
     );
     for f in &figures {
         let path = out.join(format!("{}.{}", f.name, args.format));
-        let [written, _] = f.write(&path, &f.preset.style(), args.dpi)?;
+        let preset = args
+            .style
+            .as_deref()
+            .and_then(Preset::from_name)
+            .unwrap_or(f.preset);
+        let [written, _] = f.write(&path, &preset.style(), args.dpi)?;
         let bytes = std::fs::metadata(&written)?.len();
         let rows = f.csv.lines().filter(|l| !l.starts_with('#')).count() - 1;
         println!(

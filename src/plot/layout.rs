@@ -13,7 +13,7 @@ use super::canvas::{Anchor, Canvas};
 use super::font::{DIGIT_HEIGHT, text_width};
 use super::legend::{self, LegendEntry, legend_of, marker_size};
 use super::series::{Kind, Panel, clip_polyline};
-use super::style::{GRID, Rgb, Style};
+use super::style::{GRID, MIN_FONT_PT, Rgb, Style};
 
 /// A figure's drawing: panels, their arrangement, and the legend.
 #[derive(Debug, Clone, PartialEq)]
@@ -89,7 +89,7 @@ impl Plot {
             .panels
             .iter()
             .map(|p| text_width(&p.x.label, f) / TEXT_FIT)
-            .fold(10.0 * f, f64::max);
+            .fold(8.0 * f, f64::max);
         let mut columns = self.columns.min(self.panels.len().max(1));
         let (left, right, plot_w) = loop {
             let cell_w = inner / columns as f64;
@@ -274,8 +274,13 @@ fn draw_panel(
     let (f, t) = (style.font_pt, style.tick_pt());
     let tick_len = 0.3 * f;
     let axis_pt = 0.6 * style.line_pt.min(1.5);
-    let x_ticks = panel.x.tick_marks();
-    let y_ticks = panel.y.tick_marks();
+    // As many tick labels as fit side by side (x) or one above the other
+    // (y) at this size.
+    let x_ticks = fitting_ticks(&panel.x, |labels| {
+        let widest = labels.iter().map(|l| text_width(l, t)).fold(0.0, f64::max);
+        (widest + 0.8 * f) * labels.len() as f64 <= area.w
+    });
+    let y_ticks = fitting_ticks(&panel.y, |labels| 1.6 * t * labels.len() as f64 <= area.h);
     // Grid lines at labelled ticks, under the data.
     let inside = |v: f64| (-1e-9..=1.0 + 1e-9).contains(&v);
     for k in x_ticks.iter().filter(|k| !k.label.is_empty()) {
@@ -345,10 +350,14 @@ fn draw_panel(
         0.0,
     );
     let y_label_x = area.x - left_gutter + 0.95 * f;
+    // A description longer than the panel is tall is set smaller, down to
+    // the smallest print size, rather than run into the panel above.
+    let fit = TEXT_FIT * area.h / text_width(&panel.y.label, f).max(1e-9);
+    let y_size = (f * fit.min(1.0)).max(MIN_FONT_PT.min(f));
     canvas.text(
         &panel.y.label,
         (y_label_x, area.y + area.h / 2.0),
-        f,
+        (y_size * 100.0).floor() / 100.0,
         Anchor::Middle,
         -90.0,
     );
@@ -379,6 +388,29 @@ fn draw_panel(
             };
             canvas.text(&note.text, (px, py), f, anchor, 0.0);
         }
+    }
+}
+
+/// The axis's ticks with the most labels, up to its wish, that `fits`
+/// (given the labels); at least two labels on a linear axis. A
+/// logarithmic axis keeps its ticks.
+fn fitting_ticks(axis: &Axis, fits: impl Fn(&[&str]) -> bool) -> Vec<super::axes::Tick> {
+    let labelled = |ticks: &[super::axes::Tick]| -> Vec<String> {
+        ticks
+            .iter()
+            .filter(|k| !k.label.is_empty())
+            .map(|k| k.label.clone())
+            .collect()
+    };
+    let mut wanted = axis.ticks;
+    loop {
+        let ticks = axis.clone().with_ticks(wanted).tick_marks();
+        let labels = labelled(&ticks);
+        let refs: Vec<&str> = labels.iter().map(String::as_str).collect();
+        if axis.log || wanted <= 2 || fits(&refs) {
+            return ticks;
+        }
+        wanted -= 1;
     }
 }
 

@@ -204,9 +204,9 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
         }
     }
     let quantities = [
-        ("(a) v∞ (39): slope ½ expected", "v∞ (m/s)", 0.5),
-        ("(b) x∞ (38): slope 1 expected", "x∞ = v∞·T (m)", 1.0),
-        ("(c) T·p₀.₉₉ (42): slope ½ expected", "T·p₀.₉₉ (s)", 0.5),
+        ("(a) v∞ (39): slope ½", "v∞ (m/s)", 0.5),
+        ("(b) x∞ (38): slope 1", "x∞ = v∞·T (m)", 1.0),
+        ("(c) T·p₀.₉₉ (42): slope ½", "T·p₀.₉₉ (s)", 0.5),
     ];
     const SHAPE_MARKERS: [Marker; 3] = [Marker::Circle, Marker::Square, Marker::Triangle];
     let mut panels = Vec::new();
@@ -226,7 +226,7 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
             ),
             Axis::log(label, y_range),
         );
-        let mut line = format!("{} slopes:", &title[..3]);
+        let mut line = format!("{} fitted log-log slopes:", &title[..3]);
         for (s, shape) in SHAPES.iter().enumerate() {
             let slope = loglog_slope(&data[s][q]);
             line.push_str(&format!(

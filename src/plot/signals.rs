@@ -223,9 +223,7 @@ pub fn figure2(motor: &Motor) -> Result<Figure, PlotError> {
                 let mut p = Panel::new(
                     (row == 0).then_some(title),
                     t_axis(),
-                    Axis::linear(y_label, range)
-                        .scaled(scale)
-                        .with_ticks(if zoom { 4 } else { 4 }),
+                    Axis::linear(y_label, range).scaled(scale).with_ticks(4),
                 );
                 if matches!(q, Quantity::Acceleration) {
                     push_stick_band(&mut p, a0, period);

@@ -24,7 +24,8 @@ pub enum Preset {
     SingleColumn,
     /// The full page width of a two-column journal: 175 mm, 8 pt text.
     DoubleColumn,
-    /// A 16:9 presentation slide: 254 mm x 142.875 mm, 16 pt text.
+    /// A presentation slide: 254 mm wide (a 16:9 slide of 10 in), 16 pt
+    /// text; as tall as the panels need (`--height` to fix it).
     Slide,
 }
 
@@ -47,12 +48,12 @@ impl Preset {
     }
 
     /// The preset's style: its width and font; the height follows the
-    /// figure ([`Style::height_mm`] `None`), except for a slide.
+    /// figure ([`Style::height_mm`] `None`).
     pub fn style(self) -> Style {
         let (width_mm, height_mm, font_pt, line_pt) = match self {
             Preset::SingleColumn => (85.0, None, 8.0, 1.0),
             Preset::DoubleColumn => (175.0, None, 8.0, 1.0),
-            Preset::Slide => (254.0, Some(142.875), 16.0, 2.0),
+            Preset::Slide => (254.0, None, 16.0, 2.0),
         };
         Style {
             width_mm,
