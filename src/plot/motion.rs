@@ -173,7 +173,7 @@ fn record(
             };
             engine.run_period(2, start, &mut rec).map_err(sim)?;
             Ok(Motion {
-                label: "steady state, p → ∞".to_owned(),
+                label: "steady state, p\u{a0}→\u{a0}∞".to_owned(),
                 segments: rec.segments,
                 events: rec.events,
                 first: 2,
@@ -455,7 +455,18 @@ fn sample(m: &Motion, signal: &Signal, period: f64) -> Vec<Sampled> {
     };
     let (x_rod0, x_slider0) = (first.rod_start.x, first.slider_start.x);
     let mut out = Vec::new();
+    // The engine counts the slider's position from each period's start;
+    // the slider moves continuously, so a span of several periods carries
+    // the position across each boundary.
+    let mut carried = 0.0;
+    let mut previous: Option<&Segment> = None;
     for s in &m.segments {
+        if let Some(p) = previous
+            && p.period != s.period
+        {
+            carried += p.slider_end.x - s.slider_start.x;
+        }
+        previous = Some(s);
         let offset = (s.period - m.first) as f64 * period;
         let inner = ((s.duration() / period) * PER_PERIOD as f64).ceil() as usize;
         let count = inner.max(1) + 1;
@@ -489,7 +500,7 @@ fn sample(m: &Motion, signal: &Signal, period: f64) -> Vec<Sampled> {
                 mode: s.mode,
                 t: offset + phase,
                 x_rod: x_rod - x_rod0,
-                x_slider: x_slider - x_slider0,
+                x_slider: x_slider - x_slider0 + carried,
                 v_rod,
                 v_slider,
                 a_rod,
