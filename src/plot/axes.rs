@@ -21,6 +21,9 @@ pub struct Axis {
     pub scale: f64,
     /// Number of tick labels wanted.
     pub ticks: usize,
+    /// Whole numbers only (periods, harmonic numbers): no tick between
+    /// two integers.
+    pub integer: bool,
 }
 
 /// A tick: its value and label (empty for a minor tick).
@@ -41,6 +44,7 @@ impl Axis {
             log: false,
             scale: 1.0,
             ticks: 5,
+            integer: false,
         }
     }
 
@@ -56,6 +60,12 @@ impl Axis {
     /// The same axis drawing data times `scale`.
     pub fn scaled(mut self, scale: f64) -> Self {
         self.scale = scale;
+        self
+    }
+
+    /// The same axis with ticks at whole numbers only.
+    pub fn integers(mut self) -> Self {
+        self.integer = true;
         self
     }
 
@@ -87,7 +97,7 @@ impl Axis {
         if self.log {
             log_ticks(self.range)
         } else {
-            linear_ticks(self.range, self.ticks)
+            linear_ticks(self.range, self.ticks, self.integer)
         }
     }
 }
@@ -111,7 +121,7 @@ fn widen((lo, hi): (f64, f64), log: bool) -> (f64, f64) {
     }
 }
 
-fn linear_ticks((lo, hi): (f64, f64), wanted: usize) -> Vec<Tick> {
+fn linear_ticks((lo, hi): (f64, f64), wanted: usize, integer: bool) -> Vec<Tick> {
     let span = hi - lo;
     let raw = span / wanted.max(2) as f64;
     let mag = 10f64.powf(raw.log10().floor());
@@ -120,6 +130,7 @@ fn linear_ticks((lo, hi): (f64, f64), wanted: usize) -> Vec<Tick> {
         .map(|m| m * mag)
         .find(|s| span / s <= wanted.max(2) as f64 + 1.0)
         .unwrap_or(10.0 * mag);
+    let step = if integer { step.max(1.0) } else { step };
     let first = (lo / step - 1e-9).ceil() as i64;
     let last = (hi / step + 1e-9).floor() as i64;
     (first..=last)
@@ -250,6 +261,12 @@ mod tests {
         );
         let a = Axis::linear("v", (-3.2, 7.9));
         assert_eq!(labels(&a.tick_marks()), ["−2", "0", "2", "4", "6"]);
+    }
+
+    #[test]
+    fn integer_axes_have_whole_ticks() {
+        let a = Axis::linear("p", (0.0, 2.5)).integers();
+        assert_eq!(labels(&a.tick_marks()), ["0", "1", "2"]);
     }
 
     #[test]

@@ -561,7 +561,7 @@ pub fn startup(scene: &Scene, name: &str) -> Result<Figure, PlotError> {
     let (lo, hi) = min_max(pts.iter().map(|p| p.1).chain([0.0, v_inf]));
     let mut panel = Panel::new(
         None,
-        Axis::linear("period p", (0.0, p_end + 0.5)),
+        Axis::linear("period p", (0.0, p_end + 0.5)).integers(),
         Axis::linear("mean velocity v_p (m/s)", padded(lo, hi, 0.06)),
     );
     panel.series.push(Series::hline(

@@ -108,7 +108,7 @@ const INDICATORS: [Indicator; 5] = [
         scale: 1.0,
     },
     Indicator {
-        title: "(d) velocity to input power ratio",
+        title: "(d) velocity per input power",
         log: false,
         label: "v∞ / S (mm s⁻¹ VA⁻¹)",
         value: |p| p.velocity_per_power,
@@ -243,7 +243,8 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
                         "number of harmonics n",
                         (n_lo as f64 - 0.3, n_hi as f64 + 0.3),
                     )
-                    .with_ticks((n_hi - n_lo + 1).min(7)),
+                    .with_ticks((n_hi - n_lo + 1).min(7))
+                    .integers(),
                     if ind.log {
                         Axis::log(ind.label, *range)
                     } else {

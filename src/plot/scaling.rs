@@ -74,7 +74,7 @@ pub fn figure9(motor: &Motor) -> Result<Figure, PlotError> {
         vec![(x_design, f_design)],
         Look::nth(0).with_marker(Marker::Circle),
     ));
-    p.note((3.5e-6, 1.2e3), "bandwidth unused", Anchor::Middle);
+    p.note((5e-6, 1.2e3), "bandwidth unused", Anchor::Middle);
     p.note((1.8e-4, 3e5), "velocity impaired", Anchor::Middle);
     p.note(
         (x_design * 1.3, f_design * 1.3),

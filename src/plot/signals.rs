@@ -293,7 +293,9 @@ pub fn figure3(motor: &Motor) -> Result<Figure, PlotError> {
         };
         let mut p = Panel::new(
             Some(title),
-            Axis::linear("harmonic number k", (0.5, 16.5)).with_ticks(8),
+            Axis::linear("harmonic number k", (0.5, 16.5))
+                .with_ticks(8)
+                .integers(),
             Axis::linear("amplitude d_k / x̂_R", (0.0, 0.5)),
         );
         for (i, &n) in orders.iter().enumerate() {

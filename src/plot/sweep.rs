@@ -257,12 +257,15 @@ fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &Path) -> Result<Fig
     let mut flags: Vec<Flag> = rows.iter().filter_map(|r| r.y.clone().err()).collect();
     flags.sort();
     flags.dedup();
-    let x_axis = fitted(
+    let mut x_axis = fitted(
         &axis_label(&spec.x),
         rows.iter().map(|r| r.x).chain(spec.ref_x.iter().copied()),
         spec.log_x,
         0.04,
     );
+    if rows.iter().all(|r| r.x.fract() == 0.0) {
+        x_axis = x_axis.integers();
+    }
     let ys = rows
         .iter()
         .filter_map(|r| r.y.as_ref().ok().copied())

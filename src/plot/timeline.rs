@@ -355,7 +355,7 @@ fn raster(
             (0.0, period * scale),
         )
         .scaled(scale),
-        Axis::linear("period p", (0.0, periods as f64)),
+        Axis::linear("period p", (0.0, periods as f64)).integers(),
     );
     for mode in MODES {
         let rects: Vec<[(f64, f64); 2]> = tl
