@@ -2,7 +2,7 @@
 //! page of the preset's width (read with lopdf, an independent PDF
 //! parser), its text set in the embedded DejaVu Sans and its producer the
 //! program version; the PNG has the pixel size `width / 25.4 in × dpi`;
-//! the same figure gives the same bytes.
+//! and states its resolution; the same figure gives the same bytes.
 
 use lopdf::{Document, Object};
 use stickslip::Motor;
@@ -101,6 +101,15 @@ fn png_has_the_requested_pixel_size() {
         let expected = (style.width_mm / 25.4 * dpi).round() as u32;
         assert_eq!(width, expected, "{preset} at {dpi} dpi");
         assert!(height > width / 5, "{preset}: height {height}");
+        // The pHYs chunk: pixels per metre, unit metre.
+        let at = bytes
+            .windows(4)
+            .position(|w| w == b"pHYs")
+            .expect("a pHYs chunk")
+            + 4;
+        let per_metre = u32::from_be_bytes(bytes[at..at + 4].try_into().unwrap());
+        assert_eq!(per_metre, (dpi / 0.0254).round() as u32, "{preset}");
+        assert_eq!(bytes[at + 8], 1, "unit: metre");
         assert_eq!(
             bytes,
             f.encode(Format::Png, &style, dpi).unwrap(),

@@ -5,7 +5,8 @@
 //! (`src/plot/font.rs`, DejaVu Sans) loaded, so their bytes do not depend on the machine's
 //! fonts; the PDF embeds a subset of it (its text stays text) on a page of
 //! the figure's printed size, with the program version in its information
-//! dictionary; the PNG is `width_mm / 25.4 × dpi` pixels wide, on white.
+//! dictionary; the PNG is `width_mm / 25.4 × dpi` pixels wide, on white,
+//! with its resolution stated (`pHYs`) so that it prints at that size.
 //! The same SVG gives the same bytes.
 
 use super::PlotError;
@@ -118,7 +119,22 @@ pub fn png(svg: &str, dpi: f64) -> Result<Vec<u8>, PlotError> {
         tiny_skia::Transform::from_scale(sx, sy),
         &mut pixmap.as_mut(),
     );
-    pixmap
-        .encode_png()
-        .map_err(|e| PlotError::Export(format!("encoding the PNG: {e}")))
+    // On an opaque white page the premultiplied pixels are the plain ones.
+    let mut bytes = Vec::new();
+    let encoding = |e: png::EncodingError| PlotError::Export(format!("encoding the PNG: {e}"));
+    {
+        let mut encoder = png::Encoder::new(&mut bytes, w, h);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        // The resolution, so that the image prints at the figure's size.
+        let per_metre = (dpi / 0.0254).round() as u32;
+        encoder.set_pixel_dims(Some(png::PixelDimensions {
+            xppu: per_metre,
+            yppu: per_metre,
+            unit: png::Unit::Meter,
+        }));
+        let mut writer = encoder.write_header().map_err(encoding)?;
+        writer.write_image_data(pixmap.data()).map_err(encoding)?;
+    }
+    Ok(bytes)
 }
