@@ -296,6 +296,7 @@ fn bad_arguments_are_one_line_and_create_nothing() {
             vec!["no_such_scene.toml", "-o", s(&out)],
             "no_such_scene.toml",
         ),
+        (vec!["grid.jsonl", "-o", s(&out)], "sweep outputs as CSV"),
     ];
     for (args, expected) in cases {
         let (code, _, err) = cli(&args);

@@ -229,6 +229,16 @@ pub(crate) fn plot(args: PlotArgs, streams: &mut Streams<'_>) -> Result<(), Fail
     check_output(&args)?;
     // Sizes are checked against a preset before any simulation runs.
     style(&args, Preset::SingleColumn)?;
+    if args
+        .input
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("jsonl"))
+    {
+        return Err(format!(
+            "{}: plot reads sweep outputs as CSV; run the sweep with -o NAME.csv",
+            args.input.display()
+        ));
+    }
     let figure = if is_csv(&args.input) {
         sweep_plot(&args)?
     } else {
