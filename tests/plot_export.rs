@@ -110,6 +110,13 @@ fn png_has_the_requested_pixel_size() {
         let per_metre = u32::from_be_bytes(bytes[at..at + 4].try_into().unwrap());
         assert_eq!(per_metre, (dpi / 0.0254).round() as u32, "{preset}");
         assert_eq!(bytes[at + 8], 1, "unit: metre");
+        let software = format!("Software\0{PRODUCER}");
+        assert!(
+            bytes
+                .windows(software.len())
+                .any(|w| w == software.as_bytes()),
+            "{preset}: version"
+        );
         assert_eq!(
             bytes,
             f.encode(Format::Png, &style, dpi).unwrap(),

@@ -6,7 +6,8 @@
 //! fonts; the PDF embeds a subset of it (its text stays text) on a page of
 //! the figure's printed size, with the program version in its information
 //! dictionary; the PNG is `width_mm / 25.4 × dpi` pixels wide, on white,
-//! with its resolution stated (`pHYs`) so that it prints at that size.
+//! with its resolution stated (`pHYs`) so that it prints at that size, and
+//! the program version as its `Software` text.
 //! The same SVG gives the same bytes.
 
 use super::PlotError;
@@ -102,8 +103,9 @@ pub fn pdf(svg: &str, producer: &str, title: &str) -> Result<Vec<u8>, PlotError>
     Ok(pdf.finish())
 }
 
-/// The figure as PNG at `dpi` pixels per inch, on white.
-pub fn png(svg: &str, dpi: f64) -> Result<Vec<u8>, PlotError> {
+/// The figure as PNG at `dpi` pixels per inch, on white, `producer` in
+/// its `Software` text.
+pub fn png(svg: &str, dpi: f64, producer: &str) -> Result<Vec<u8>, PlotError> {
     let tree = tree(svg)?;
     let scale = dpi / 96.0;
     let size = tree.size();
@@ -133,6 +135,9 @@ pub fn png(svg: &str, dpi: f64) -> Result<Vec<u8>, PlotError> {
             yppu: per_metre,
             unit: png::Unit::Meter,
         }));
+        encoder
+            .add_text_chunk("Software".to_owned(), producer.to_owned())
+            .map_err(encoding)?;
         let mut writer = encoder.write_header().map_err(encoding)?;
         writer.write_image_data(pixmap.data()).map_err(encoding)?;
     }

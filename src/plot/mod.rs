@@ -37,7 +37,7 @@
 //! the background colour. Nothing depends on the clock, the thread count
 //! or the machine's fonts, so the same inputs give the same bytes. Every
 //! file carries the program version (SVG `<metadata>`, PDF information
-//! dictionary). [`Figure::write`] writes the figure and its CSV
+//! dictionary, PNG `Software` text). [`Figure::write`] writes the figure and its CSV
 //! atomically (temporary file and rename) into an existing directory.
 
 pub mod axes;
@@ -99,7 +99,7 @@ impl Figure {
         match format {
             Format::Svg => Ok(svg.into_bytes()),
             Format::Pdf => export::pdf(&svg, PRODUCER, &self.name),
-            Format::Png => export::png(&svg, dpi),
+            Format::Png => export::png(&svg, dpi, PRODUCER),
         }
     }
 
