@@ -1,29 +1,53 @@
 //! Regenerates every figure in `plots/`: the paper's figures 2-9, the
-//! stroke scaling law and the event timeline, each as SVG with its data as
-//! CSV beside it (see `src/plot/`). Figures 6 and 7 are drawn from the grid
-//! of `examples/sweeps/section7.toml`, run in parallel with
-//! [`stickslip::sweep`]. The same inputs give the same bytes.
+//! stroke scaling law and the event timeline, each in its journal preset
+//! (`single-column` or `double-column`, see `src/plot/style.rs`) as SVG
+//! with its data as CSV beside it, drawn by the library's plotting kit
+//! (`src/plot/`), the same path as `stickslip plot`. Figures 6 and 7 are
+//! drawn from the grid of `examples/sweeps/section7.toml`, run in parallel
+//! with [`stickslip::sweep`]. The same inputs give the same bytes.
 //!
-//! `cargo run --release --example paper_figures [OUTPUT_DIR]`
-//! (default `plots/` in the crate).
+//! `cargo run --release --example paper_figures -- [OUTPUT_DIR] [--format svg|pdf|png] [--style PRESET]`
+//! (default `plots/` in the crate, SVG).
 
+use clap::Parser;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stickslip::plot::performance::GridPoint;
-use stickslip::plot::{self, Figure};
+use stickslip::plot::{self, Figure, Preset};
+use stickslip::signal::SignalSpec;
 use stickslip::sweep::{self, Axis};
 use stickslip::{Motor, Scene};
 
 type Result<T> = std::result::Result<T, Box<dyn std::error::Error>>;
 
+/// Regenerate the paper's figures and the project's own.
+#[derive(Parser)]
+struct Args {
+    /// Directory to write into (created if missing).
+    output_dir: Option<PathBuf>,
+    /// File format of the figures (the CSV is always written beside).
+    #[arg(long, default_value = "svg", value_parser = ["svg", "pdf", "png"])]
+    format: String,
+    /// Print preset for every figure (default: each figure's own journal
+    /// preset).
+    #[arg(long, value_parser = ["single-column", "double-column", "slide"])]
+    style: Option<String>,
+    /// Resolution of PNG output (pixels per inch).
+    #[arg(long, default_value_t = 300.0)]
+    dpi: f64,
+}
+
 fn main() -> Result<()> {
+    let args = Args::parse();
     let clock = Instant::now();
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let out = std::env::args_os()
-        .nth(1)
-        .map_or_else(|| root.join("plots"), PathBuf::from);
+    let out = args.output_dir.unwrap_or_else(|| root.join("plots"));
     let motor = Motor::default();
     let scene = Scene::default();
+    // Figure 8's scene (the paper's caption): n = 2, no sigma factors,
+    // sqrt(kappa) = 1, stroke 25 um.
+    let mut fig8_scene = scene.clone();
+    fig8_scene.signal = SignalSpec::fourier(25e-6, 1.0, 2, false);
 
     let grid = section7_grid(&root.join("examples/sweeps/section7.toml"))?;
     print_grid(&grid);
@@ -35,20 +59,38 @@ fn main() -> Result<()> {
         plot::signals::figure5(&motor)?,
         fig6,
         fig7,
-        plot::velocity::figure8(&scene)?,
+        plot::motion::figure8(&fig8_scene)?,
         plot::scaling::figure9(&motor)?,
         plot::scaling::stroke_scaling(&scene)?,
         plot::timeline::event_timeline(&scene)?,
     ];
-    println!("\n{:<34} {:>10} {:>10}", "figure", "svg bytes", "csv rows");
+    std::fs::create_dir_all(&out)?;
+    println!(
+        "\n{:<34} {:>14} {:>10} {:>10}",
+        "figure", "preset", "bytes", "csv rows"
+    );
     for f in &figures {
-        f.write_to(&out)?;
+        let path = out.join(format!("{}.{}", f.name, args.format));
+        let preset = args
+            .style
+            .as_deref()
+            .and_then(Preset::from_name)
+            .unwrap_or(f.preset);
+        let [written, _] = f.write(&path, &preset.style(), args.dpi)?;
+        let bytes = std::fs::metadata(&written)?.len();
         let rows = f.csv.lines().filter(|l| !l.starts_with('#')).count() - 1;
-        println!("{:<34} {:>10} {:>10}", f.name, f.svg.len(), rows);
+        println!(
+            "{:<34} {:>14} {:>10} {:>10}",
+            f.name,
+            f.preset.name(),
+            bytes,
+            rows
+        );
     }
     println!(
-        "\nwrote {} figures (SVG + CSV) to {} in {:.2} s",
+        "\nwrote {} figures ({} + CSV) to {} in {:.2} s",
         figures.len(),
+        args.format,
         out.display(),
         clock.elapsed().as_secs_f64()
     );

@@ -12,7 +12,8 @@
 //!
 //! `cargo run --release --example work_precision`
 //!
-//! prints a table and writes `plots/work_precision.svg` (log-log relative
+//! prints a table and writes `plots/work_precision.svg` (drawn with the
+//! library's plotting kit, `stickslip::plot`, double-column preset; log-log relative
 //! error of `v_inf` and of the start-up time `T p_0.99` against wall time)
 //! and `plots/work_precision.csv` (every point drawn).
 //!
@@ -32,14 +33,12 @@
 //! time columns of the CSV and the figure differ from run to run; every
 //! other column is the same on every run.
 
-use plotters::coord::Shift;
-use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::fmt::Write as _;
 use std::time::Instant;
 use stickslip::engine::PeriodEngine;
 use stickslip::engine::event::{EventEngine, EventOptions};
 use stickslip::engine::fixed_step::{FixedStepEngine, FixedStepOptions};
+use stickslip::plot::{Anchor, Axis, Figure, Kind, Look, Marker, Panel, Plot, Preset, Series};
 use stickslip::signal::SignalSpec;
 use stickslip::simulation::{self, RunReport};
 use stickslip::{Motor, Scene, Signal};
@@ -126,9 +125,18 @@ fn median(mut xs: Vec<f64>) -> f64 {
 }
 
 /// One run: engine set-up plus analysis, timed.
-fn run_once(signal: &Signal, motor: &Motor, scene: &Scene, engine: Engine) -> (RunReport, f64) {
-    fn go<E: PeriodEngine>(e: E, scene: &Scene, motor: &Motor) -> RunReport {
-        simulation::run_with(e, scene, motor).expect("the study's scenes run")
+fn run_once(
+    signal: &Signal,
+    motor: &Motor,
+    scene: &Scene,
+    engine: Engine,
+) -> Result<(RunReport, f64), stickslip::Error> {
+    fn go<E: PeriodEngine>(
+        e: E,
+        scene: &Scene,
+        motor: &Motor,
+    ) -> Result<RunReport, stickslip::Error> {
+        simulation::run_with(e, scene, motor)
     }
     let clock = Instant::now();
     let report = match engine {
@@ -137,28 +145,29 @@ fn run_once(signal: &Signal, motor: &Motor, scene: &Scene, engine: Engine) -> (R
                 time_tolerance: tol.unwrap_or(EventOptions::default().time_tolerance),
                 ..EventOptions::default()
             };
-            go(EventEngine::new(signal, motor, options), scene, motor)
+            go(EventEngine::new(signal, motor, options), scene, motor)?
         }
         Engine::Fixed(steps) => {
             let options = FixedStepOptions {
                 steps_per_harmonic: steps,
                 ..FixedStepOptions::default()
             };
-            go(FixedStepEngine::new(signal, motor, options), scene, motor)
+            go(FixedStepEngine::new(signal, motor, options), scene, motor)?
         }
     };
-    (report, clock.elapsed().as_secs_f64())
+    Ok((report, clock.elapsed().as_secs_f64()))
 }
 
 /// Median wall time over enough runs to fill about a second (3 to 9 runs;
-/// a single run when one takes longer than a second).
+/// a single run when one takes longer than a second). A run without a
+/// steady state (a coarse reference may not settle) is an error.
 fn measure(
     signal: &Signal,
     motor: &Motor,
     scene: &Scene,
     engine: Engine,
-) -> (RunReport, f64, usize) {
-    let (report, first) = run_once(signal, motor, scene, engine);
+) -> Result<(RunReport, f64, usize), stickslip::Error> {
+    let (report, first) = run_once(signal, motor, scene, engine)?;
     let runs = if first > 1.0 {
         1
     } else {
@@ -166,9 +175,9 @@ fn measure(
     };
     let mut times = vec![first];
     for _ in 1..runs {
-        times.push(run_once(signal, motor, scene, engine).1);
+        times.push(run_once(signal, motor, scene, engine)?.1);
     }
-    (report, median(times), runs)
+    Ok((report, median(times), runs))
 }
 
 fn relative(value: f64, exact: f64) -> f64 {
@@ -181,7 +190,8 @@ fn main() {
     let mut summary = String::new();
     for (ci, case) in cases.iter().enumerate() {
         let (signal, motor) = simulation::build(&case.scene).expect("valid scene");
-        let (exact, wall, runs) = measure(&signal, &motor, &case.scene, Engine::Event(None));
+        let (exact, wall, runs) = measure(&signal, &motor, &case.scene, Engine::Event(None))
+            .expect("the event engine runs");
         let v_exact = exact.indicators.v_inf;
         let bound = exact.error.v_inf.unwrap_or(0.0);
         let p_exact = exact.startup_periods;
@@ -210,13 +220,20 @@ fn main() {
         ));
         for tol in TIME_TOLERANCES {
             let engine = Engine::Event(Some(tol));
-            let (r, wall, runs) = measure(&signal, &motor, &case.scene, engine);
+            let (r, wall, runs) =
+                measure(&signal, &motor, &case.scene, engine).expect("the event engine runs");
             let v_error = ((r.indicators.v_inf - v_exact).abs() + bound) / v_exact.abs();
             points.push(point(engine, &r, wall, runs, v_error));
         }
         for steps in STEPS {
             let engine = Engine::Fixed(steps);
-            let (r, wall, runs) = measure(&signal, &motor, &case.scene, engine);
+            let (r, wall, runs) = match measure(&signal, &motor, &case.scene, engine) {
+                Ok(m) => m,
+                Err(e) => {
+                    println!("{} {}: {e}: left out", case.key, engine.setting());
+                    continue;
+                }
+            };
             let v_error = relative(r.indicators.v_inf, v_exact);
             points.push(point(engine, &r, wall, runs, v_error));
         }
@@ -227,12 +244,9 @@ fn main() {
     print!("{}", table(&cases, &points));
     println!();
     print!("{summary}");
-    let csv = csv(&cases, &points);
-    let svg = figure(&cases, &points);
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/plots");
-    std::fs::create_dir_all(dir).expect("plots/ can be created");
-    std::fs::write(format!("{dir}/work_precision.csv"), csv).expect("CSV written");
-    std::fs::write(format!("{dir}/work_precision.svg"), svg).expect("SVG written");
+    let figure = figure(&cases, &points, csv(&cases, &points));
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("plots");
+    figure.write_to(&dir).expect("plots/ is writable");
     println!("wrote plots/work_precision.svg and plots/work_precision.csv");
 }
 
@@ -243,8 +257,13 @@ fn headline(signal: &Signal, motor: &Motor, scene: &Scene, v_exact: f64, bound: 
     let (mut event_times, mut fixed_times) = (Vec::new(), Vec::new());
     let mut fixed_v = 0.0;
     for _ in 0..pairs {
-        event_times.push(run_once(signal, motor, scene, Engine::Event(None)).1);
-        let (r, t) = run_once(signal, motor, scene, Engine::Fixed(PAPER_STEPS));
+        event_times.push(
+            run_once(signal, motor, scene, Engine::Event(None))
+                .expect("the event engine runs")
+                .1,
+        );
+        let (r, t) = run_once(signal, motor, scene, Engine::Fixed(PAPER_STEPS))
+            .expect("the reference at the paper's resolution runs");
         fixed_v = r.indicators.v_inf;
         fixed_times.push(t);
     }
@@ -363,189 +382,105 @@ fn csv(cases: &[Case], points: &[Point]) -> String {
 
 // ------------------------------------------------------------- figure ----
 
-/// Okabe-Ito colours, one per scene.
-const COLORS: [RGBColor; 3] = [
-    RGBColor(0, 114, 178),
-    RGBColor(213, 94, 0),
-    RGBColor(0, 158, 115),
-];
-const GREY: RGBColor = RGBColor(110, 110, 110);
-
-fn font(size: f64) -> TextStyle<'static> {
-    ("sans-serif", size).into_font().color(&BLACK)
-}
-
-/// `10^k` with a superscript exponent.
-fn power_of_ten(v: &f64) -> String {
-    let k = v.log10().round() as i32;
-    let digits = stickslip::plot::superscript(k);
-    format!("10{digits}")
-}
-
-type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
-type DrawResult = Result<(), DrawingAreaErrorKind<std::io::Error>>;
-
-fn figure(cases: &[Case], points: &[Point]) -> String {
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (1400, 800)).into_drawing_area();
-        draw(&root, cases, points).expect("the figure draws");
-        root.present().expect("the figure renders");
-    }
-    svg
-}
-
-fn draw(root: &Area<'_>, cases: &[Case], points: &[Point]) -> DrawResult {
-    root.fill(&WHITE)?;
-    let (title, rest) = root.split_vertically(48);
-    title.draw_text(
-        "Work precision: fixed-step reference (first order) and event engine",
-        &font(24.0).pos(Pos::new(HPos::Center, VPos::Center)),
-        (700, 28),
-    )?;
-    let (panels, legend) = rest.split_vertically(560);
-    let halves = panels.split_evenly((1, 2));
-    let wall_range = (1e-5, 1e1);
-    panel(
-        &halves[0],
-        cases,
-        points,
-        "steady-state velocity v_inf",
-        "relative error of v_inf (dimensionless)",
-        wall_range,
-        (1e-16, 1.0),
-        |p| Some(p.v_error),
-        &[],
-    )?;
-    panel(
-        &halves[1],
-        cases,
-        points,
-        "start-up time T p_0.99",
-        "relative error of the start-up time (dimensionless)",
-        wall_range,
-        (1e-4, 1.0),
-        |p| p.startup_error,
-        &zero_startup_notes(cases, points),
-    )?;
-    draw_legend(&legend, cases)
-}
-
-#[allow(clippy::too_many_arguments)]
-fn panel(
-    area: &Area<'_>,
-    cases: &[Case],
-    points: &[Point],
-    title: &str,
-    y_desc: &str,
-    (x0, x1): (f64, f64),
-    (y0, y1): (f64, f64),
-    value: impl Fn(&Point) -> Option<f64>,
-    notes: &[String],
-) -> DrawResult {
-    let mut chart = ChartBuilder::on(area)
-        .caption(title, font(20.0))
-        .margin(18)
-        .margin_right(34)
-        .x_label_area_size(62)
-        .y_label_area_size(92)
-        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("wall time (s), set-up and whole analysis")
-        .y_desc(y_desc)
-        .x_label_formatter(&power_of_ten)
-        .y_label_formatter(&power_of_ten)
-        .x_labels(8)
-        .y_labels(9)
-        .label_style(font(16.0))
-        .axis_desc_style(font(17.0))
-        .light_line_style(RGBColor(235, 235, 235))
-        .bold_line_style(RGBColor(205, 205, 205))
-        .draw()?;
-    let drawable = |p: &Point| {
-        value(p)
-            .filter(|v| *v > 0.0 && v.is_finite())
-            .map(|v| (p.wall, v.clamp(y0, y1)))
-    };
-    if notes.is_empty() {
-        // First order: error ∝ steps^-1 ∝ wall time^-1.
-        let guide = [(3e-5, 1e-6), (3e-3, 1e-8)];
-        chart.draw_series(DashedLineSeries::new(guide, 6, 5, GREY.stroke_width(2)))?;
-        chart.draw_series(std::iter::once(Text::new(
-            "slope -1 (first order)",
-            (3e-5, 3e-9),
-            font(15.0).color(&GREY),
-        )))?;
-    }
-    for (ci, _) in cases.iter().enumerate() {
-        let color = COLORS[ci];
-        // The reference's curve, broken where a point is not drawable.
-        let mut pieces: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-        for p in points
-            .iter()
-            .filter(|p| p.case == ci && matches!(p.engine, Engine::Fixed(_)))
-        {
-            match drawable(p) {
-                Some(xy) => pieces.last_mut().expect("a piece").push(xy),
-                None => pieces.push(Vec::new()),
-            }
-        }
-        for piece in &pieces {
-            chart.draw_series(LineSeries::new(piece.clone(), color.stroke_width(2)))?;
-            chart.draw_series(piece.iter().map(|&xy| Circle::new(xy, 4, color.filled())))?;
-        }
-        let event: Vec<(f64, f64)> = points
-            .iter()
-            .filter(|p| p.case == ci && matches!(p.engine, Engine::Event(_)))
-            .filter_map(drawable)
-            .collect();
-        chart.draw_series(
-            event
+/// The figure, drawn with the library's plotting kit (`stickslip::plot`):
+/// per scene, the reference as a line with dots and the event engine as
+/// markers, both panels on log-log axes.
+fn figure(cases: &[Case], points: &[Point], csv: String) -> Figure {
+    let wall = Axis::log("wall time (s), set-up and whole analysis", (1e-5, 1e1));
+    let mut v = Panel::new(
+        Some("(a) steady-state velocity v∞"),
+        wall.clone(),
+        Axis::log("relative error of v∞", (1e-16, 1.0)),
+    );
+    // First order: error ∝ steps^-1 ∝ wall time^-1.
+    v.series.push(Series::line(
+        Some("slope −1 (first order)"),
+        vec![(3e-5, 1e-6), (3e-3, 1e-8)],
+        Look::reference(),
+    ));
+    let mut startup = Panel::new(
+        Some("(b) start-up time T·p₀.₉₉"),
+        wall,
+        Axis::log("relative error of T·p₀.₉₉", (1e-4, 1.0)),
+    );
+    let values: [fn(&Point) -> Option<f64>; 2] = [|p| Some(p.v_error), |p| p.startup_error];
+    for (panel, value) in [&mut v, &mut startup].into_iter().zip(values) {
+        let drawable = |p: &Point| {
+            value(p)
+                .filter(|v| *v > 0.0 && v.is_finite())
+                .map(|v| (p.wall, v))
+        };
+        for (ci, case) in cases.iter().enumerate() {
+            let name = case.label.split(':').next().unwrap_or(case.key);
+            // The reference's curve, broken where a point is not drawable.
+            let mut pieces: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+            for p in points
                 .iter()
-                .map(|&xy| TriangleMarker::new(xy, 8, color.filled())),
-        )?;
+                .filter(|p| p.case == ci && matches!(p.engine, Engine::Fixed(_)))
+            {
+                match drawable(p) {
+                    Some(xy) => pieces.last_mut().expect("a piece").push(xy),
+                    None => pieces.push(Vec::new()),
+                }
+            }
+            panel.series.push(Series {
+                label: Some(format!("{name}: reference")),
+                pieces,
+                look: Look::nth(ci).with_marker(Marker::Circle),
+                kind: Kind::Curve,
+            });
+            let event: Vec<(f64, f64)> = points
+                .iter()
+                .filter(|p| p.case == ci && matches!(p.engine, Engine::Event(_)))
+                .filter_map(drawable)
+                .collect();
+            panel.series.push(Series::points(
+                Some(&format!("{name}: event engine")),
+                event,
+                Look::nth_points(ci).with_marker(EVENT_MARKERS[ci]),
+            ));
+        }
     }
-    // Notes in the panel's empty lower right corner, in pixels.
-    let plot = chart.plotting_area().strip_coord_spec();
-    let (w, h) = plot.dim_in_pixel();
-    let line = 21;
-    for (i, note) in notes.iter().enumerate() {
-        let y = h as i32 - 12 - line * (notes.len() - i) as i32;
-        plot.draw_text(note, &font(15.0), (w as i32 * 24 / 100, y))?;
-    }
-    // Step-count labels along the default scene's reference curve.
+    // Step counts beside the default scene's reference points.
     for p in points.iter().filter(|p| p.case == 0) {
-        if let (Engine::Fixed(s), Some(xy)) = (p.engine, drawable(p))
+        if let Engine::Fixed(s) = p.engine
             && [10, 100, 1000, PAPER_STEPS, 100_000].contains(&s)
+            && p.v_error > 0.0
         {
             let text = if s == PAPER_STEPS {
                 format!("{s} (paper)")
             } else {
                 s.to_string()
             };
-            // Above right of the point; below it near the right edge.
-            let pos = if xy.0 > 1.0 {
-                Pos::new(HPos::Center, VPos::Top)
-            } else {
-                Pos::new(HPos::Left, VPos::Bottom)
-            };
-            chart.draw_series(std::iter::once(Text::new(text, xy, font(14.0).pos(pos))))?;
+            v.note((p.wall * 1.4, p.v_error * 2.0), &text, Anchor::Start);
         }
     }
-    Ok(())
+    let mut notes = vec![
+        "Reference: 10 to 10⁵ steps per period of the highest harmonic (labels: steps, default scene).".to_owned(),
+        "Event errors are bounds; wall times are medians and machine dependent.".to_owned(),
+    ];
+    notes.extend(zero_startup_notes(cases, points));
+    Figure {
+        name: "work_precision".to_owned(),
+        plot: Plot::grid(vec![v, startup], 2, 0.8).with_notes(notes),
+        csv,
+        preset: Preset::DoubleColumn,
+    }
 }
+
+/// Markers of the event engine's points, one per scene.
+const EVENT_MARKERS: [Marker; 3] = [Marker::Triangle, Marker::Diamond, Marker::TriangleDown];
 
 /// Which start-up errors are exactly zero (and so not drawn).
 fn zero_startup_notes(cases: &[Case], points: &[Point]) -> Vec<String> {
-    let mut notes = vec!["error 0 (same p_0.99), not drawn:".to_owned()];
+    let mut notes = vec!["Start-up error 0 (same p₀.₉₉), not drawn:".to_owned()];
     let zero = |p: &Point| p.startup_error == Some(0.0);
     let events: Vec<&Point> = points
         .iter()
         .filter(|p| matches!(p.engine, Engine::Event(_)))
         .collect();
     if events.iter().all(|p| zero(p)) {
-        notes.push("  event engine: every scene and tolerance".to_owned());
+        notes.push("event engine: every scene and tolerance".to_owned());
     }
     for (ci, case) in cases.iter().enumerate() {
         let fixed: Vec<&Point> = points
@@ -562,53 +497,10 @@ fn zero_startup_notes(cases: &[Case], points: &[Point]) -> Vec<String> {
             .collect();
         let name = case.label.split(':').next().unwrap_or(case.key);
         if zeros.len() == fixed.len() {
-            notes.push(format!("  {name}, reference: every resolution"));
+            notes.push(format!("{name}, reference: every resolution"));
         } else if !zeros.is_empty() {
-            notes.push(format!("  {name}, reference: {} steps", zeros.join(", ")));
+            notes.push(format!("{name}, reference: {} steps", zeros.join(", ")));
         }
     }
-    notes
-}
-
-fn draw_legend(area: &Area<'_>, cases: &[Case]) -> DrawResult {
-    let row = 30;
-    let col = [40, 700];
-    for (ci, case) in cases.iter().enumerate() {
-        let color = COLORS[ci];
-        let y = 26 + row * ci as i32;
-        // Reference: line with dots.
-        let x = col[0];
-        area.draw(&PathElement::new(
-            vec![(x, y), (x + 44, y)],
-            color.stroke_width(2),
-        ))?;
-        area.draw(&Circle::new((x + 22, y), 4, color.filled()))?;
-        area.draw_text(
-            &format!("{}: fixed-step reference", case.label),
-            &font(17.0).pos(Pos::new(HPos::Left, VPos::Center)),
-            (x + 56, y),
-        )?;
-        // Event engine: triangles.
-        let x = col[1];
-        area.draw(&TriangleMarker::new((x + 22, y), 8, color.filled()))?;
-        area.draw_text(
-            &format!("{}: event engine", case.label),
-            &font(17.0).pos(Pos::new(HPos::Left, VPos::Center)),
-            (x + 56, y),
-        )?;
-    }
-    let notes = [
-        "Reference: 10 to 10^5 steps per period of the highest harmonic (labels: steps, default scene; the paper used 5000). \
-         Event engine: default and looser event-time tolerances (1e-10, 1e-7, 1e-4 T).",
-        "Event errors are bounds (the default run's error estimate plus the difference to it); a start-up \
-         error of zero (same p_0.99) is not drawn. Wall times: medians, machine dependent.",
-    ];
-    for (i, note) in notes.iter().enumerate() {
-        area.draw_text(
-            note,
-            &font(15.0).color(&GREY),
-            (col[0], 26 + row * 3 + 4 + 22 * i as i32),
-        )?;
-    }
-    Ok(())
+    vec![notes.join("; ").replacen(":;", ":", 1)]
 }

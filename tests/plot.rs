@@ -1,20 +1,23 @@
 //! Figures (`src/plot/`): the same inputs give the same bytes, every figure
-//! is written as SVG with its CSV beside it, and the CSV is rectangular.
+//! is written with its CSV beside it, and the CSV is rectangular.
 
 use stickslip::Motor;
 use stickslip::plot::performance::{GridPoint, figures6_7};
-use stickslip::plot::{Figure, PlotError, scaling, signals};
+use stickslip::plot::{Figure, PlotError, Preset, scaling, signals};
 
 /// A figure made from the motor alone.
 type MotorFigure = fn(&Motor) -> Result<Figure, PlotError>;
 
 /// Every data row has as many cells as the header; returns the row count.
 fn check_csv(figure: &Figure) -> usize {
-    let mut lines = figure.csv.lines().filter(|l| !l.starts_with('#'));
-    let columns = lines.next().expect("a header").split(',').count();
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .from_reader(figure.csv.as_bytes());
+    let columns = reader.headers().expect("a header").len();
     let mut rows = 0;
-    for line in lines {
-        assert_eq!(line.split(',').count(), columns, "{}: {line}", figure.name);
+    for record in reader.records() {
+        let record = record.unwrap_or_else(|e| panic!("{}: {e}", figure.name));
+        assert_eq!(record.len(), columns, "{}", figure.name);
         rows += 1;
     }
     rows
@@ -34,15 +37,17 @@ fn signal_figures_are_byte_identical_and_complete() {
         let a = make(&motor).unwrap();
         let b = make(&motor).unwrap();
         assert_eq!(a, b, "{} differs between two runs", a.name);
-        assert!(a.svg.starts_with("<svg") && a.svg.trim_end().ends_with("</svg>"));
+        for preset in Preset::ALL {
+            let svg = a.svg(&preset.style());
+            assert_eq!(svg, b.svg(&preset.style()), "{} in {preset}", a.name);
+            assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+        }
         assert!(check_csv(&a) > 0, "{} has data", a.name);
     }
 }
 
-/// Figures 6 and 7 from a synthetic grid: both figures, one CSV row per
-/// point, the same bytes twice.
-#[test]
-fn grid_figures_from_points() {
+/// A synthetic section-7 grid: both sigma settings, two levels, n = 2..4.
+pub fn grid() -> Vec<GridPoint> {
     let mut points = Vec::new();
     for level in [3.0, 6.0] {
         for n in 2..=4 {
@@ -65,6 +70,14 @@ fn grid_figures_from_points() {
             }
         }
     }
+    points
+}
+
+/// Figures 6 and 7 from a synthetic grid: both figures, one CSV row per
+/// point, the same bytes twice.
+#[test]
+fn grid_figures_from_points() {
+    let points = grid();
     let [six, seven] = figures6_7(&points).unwrap();
     assert_eq!(check_csv(&six), 6);
     assert_eq!(check_csv(&seven), 6);
@@ -81,8 +94,31 @@ fn figures_are_written_beside_each_other() {
     let dir = std::env::temp_dir().join(format!("stickslip-plot-test-{}", std::process::id()));
     let figure = signals::figure3(&Motor::default()).unwrap();
     let [svg, csv] = figure.write_to(&dir).unwrap();
-    assert_eq!(std::fs::read_to_string(&svg).unwrap(), figure.svg);
+    assert_eq!(
+        std::fs::read_to_string(&svg).unwrap(),
+        figure.svg(&figure.preset.style())
+    );
     assert_eq!(std::fs::read_to_string(&csv).unwrap(), figure.csv);
     assert_eq!(svg.with_extension("csv"), csv);
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Issue 11: figure 8 draws the scene it is given. Two scenes that differ
+/// only in the signal's harmonics give different figures and data, and the
+/// CSV's period is the given scene's.
+#[test]
+fn figure8_uses_the_scene_it_is_given() {
+    use stickslip::signal::SignalSpec;
+    let two = stickslip::Scene {
+        signal: SignalSpec::fourier(25e-6, 1.0, 2, false),
+        ..Default::default()
+    };
+    let mut three = two.clone();
+    three.signal = SignalSpec::fourier(25e-6, 1.0, 3, false);
+    let a = stickslip::plot::motion::figure8(&two).unwrap();
+    let b = stickslip::plot::motion::figure8(&three).unwrap();
+    assert_ne!(a.csv, b.csv);
+    let period = |scene: &stickslip::Scene| stickslip::simulation::build(scene).unwrap().0.period();
+    assert!(a.csv.contains(&format!("T = {:e} s", period(&two))));
+    assert!(b.csv.contains(&format!("T = {:e} s", period(&three))));
 }

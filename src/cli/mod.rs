@@ -28,6 +28,7 @@
 
 mod check;
 mod compare;
+mod plot;
 mod run;
 mod signal;
 mod sweep;
@@ -65,6 +66,8 @@ enum Command {
     Signal(signal::SignalArgs),
     /// Compare a user's fixed-step results (CSV, MAT) with the exact solution.
     Compare(compare::CompareArgs),
+    /// Publication figure of a scene or a sweep output (SVG, PDF, PNG).
+    Plot(plot::PlotArgs),
 }
 
 /// The output and error streams of one invocation.
@@ -114,6 +117,7 @@ where
         Some(Command::Merge(args)) => sweep::merge(args, streams).map(|()| 0),
         Some(Command::Signal(args)) => signal::signal(args, streams).map(|()| 0),
         Some(Command::Compare(args)) => return compare::compare(args, streams),
+        Some(Command::Plot(args)) => plot::plot(args, streams).map(|()| 0),
     };
     match outcome {
         Ok(code) => code,

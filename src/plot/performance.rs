@@ -12,12 +12,9 @@
 //! `examples/sweeps/section7.toml` and [`crate::sweep`]); this module only
 //! draws [`GridPoint`]s.
 
-use super::{
-    Area, Axis, Cell, Csv, DrawResult, Figure, LegendEntry, Mark, PALETTE, Panel, PlotError,
-    REFERENCE, Series, draw_panel, font, line_height, min_max, render, size, text_width, titled,
-};
+use super::axes::tick_label;
+use super::{Axis, Cell, Csv, Figure, Look, Panel, Plot, PlotError, Preset, Series, min_max};
 use crate::simulation::RunReport;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 /// The ideal stick-slip maximum velocity of the paper's motor, from Part I
 /// (m/s), drawn as a reference in the `v_inf` panels.
@@ -111,7 +108,7 @@ const INDICATORS: [Indicator; 5] = [
         scale: 1.0,
     },
     Indicator {
-        title: "(d) velocity to input power ratio",
+        title: "(d) velocity per input power",
         log: false,
         label: "v∞ / S (mm s⁻¹ VA⁻¹)",
         value: |p| p.velocity_per_power,
@@ -134,12 +131,9 @@ fn levels(points: &[GridPoint]) -> Vec<f64> {
     l
 }
 
-/// Just below the power of ten at or below `min / 1.06`, for a
-/// logarithmic axis: plotters puts its first tick at the first power of
-/// ten it computes inside the range, and `log10(0.1)` rounds to just
-/// above -1.
+/// The power of ten at or below `min / 1.06`, for a logarithmic axis.
 fn nice_bottom(min: f64) -> f64 {
-    0.999 * 10f64.powf((min / 1.06).log10().floor())
+    10f64.powf((min / 1.06).log10().floor())
 }
 
 /// A round upper limit for an axis from 0 that holds `max` with a margin.
@@ -246,24 +240,24 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
                 let mut panel = Panel::new(
                     Some(ind.title),
                     Axis::linear(
-                        "number of harmonics n (–)",
+                        "number of harmonics n",
                         (n_lo as f64 - 0.3, n_hi as f64 + 0.3),
                     )
-                    .ticks(n_hi - n_lo + 1),
+                    .with_ticks((n_hi - n_lo + 1).min(7))
+                    .integers(),
                     if ind.log {
-                        Axis::log(ind.label, *range).ticks(40)
+                        Axis::log(ind.label, *range)
                     } else {
-                        Axis::linear(ind.label, *range).ticks(8)
+                        Axis::linear(ind.label, *range).with_ticks(4)
                     }
                     .scaled(ind.scale),
                 );
                 if i == 0 {
                     panel.series.push(Series::hline(
-                        None,
+                        Some("ideal stick-slip maximum, 0.06 m/s"),
                         IDEAL_STICK_SLIP_MAX,
                         (n_lo as f64 - 0.3, n_hi as f64 + 0.3),
-                        REFERENCE,
-                        Mark::Dashed(2, 8, 5),
+                        Look::reference(),
                     ));
                 }
                 for (c, level) in levels.iter().enumerate() {
@@ -276,108 +270,44 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
                                 .map(|v| (p.n as f64, v))
                         })
                         .collect();
-                    let mark = if c % 2 == 0 {
-                        Mark::LinePoints(2)
-                    } else {
-                        Mark::LineSquares(2)
-                    };
+                    let f_max = rows
+                        .iter()
+                        .find(|p| p.level == *level)
+                        .map_or(f64::NAN, |p| p.f_max);
+                    let label =
+                        format!("n√κ = {} ({:.1} kHz)", tick_label(*level, 1.0), f_max / 1e3);
                     panel
                         .series
-                        .push(Series::line(None, pts, PALETTE[c % PALETTE.len()], mark));
+                        .push(Series::line(Some(&label), pts, level_look(c)));
                 }
                 panel
             })
             .collect();
-        let entries: Vec<LegendEntry> = levels
-            .iter()
-            .enumerate()
-            .map(|(c, level)| {
-                let f_max = rows
-                    .iter()
-                    .find(|p| p.level == *level)
-                    .map_or(f64::NAN, |p| p.f_max);
-                let mark = if c % 2 == 0 {
-                    Mark::LinePoints(2)
-                } else {
-                    Mark::LineSquares(2)
-                };
-                LegendEntry::new(
-                    &format!(
-                        "n√κ = {}, f_max = {:.1} kHz",
-                        super::tick_label(*level),
-                        f_max / 1e3
-                    ),
-                    PALETTE[c % PALETTE.len()],
-                    mark,
-                )
-            })
-            .chain(std::iter::once(LegendEntry::new(
-                "ideal stick-slip maximum, 0.06 m/s (a)",
-                REFERENCE,
-                Mark::Dashed(2, 8, 5),
-            )))
-            .collect();
-        let notes = [
-            format!(
-                "grid: n√κ ∈ {{{}}}, n = {n_lo} … {n_hi}",
-                levels
-                    .iter()
-                    .map(|l| super::tick_label(*l))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-            "√κ = (n√κ) / n; f_max = n√κ · 1574.8 Hz (37)".to_owned(),
-            "paper motor, Table 1 actuator, stroke 25 µm".to_owned(),
-            "lines for visual guidance only (n is an integer)".to_owned(),
-        ];
-        let title = format!(
-            "Figure {}: indicators at equal maximum frequency f_max ∝ n√κ, {} σ factors",
-            if sigma { 7 } else { 6 },
-            if sigma { "with" } else { "without" }
-        );
-        let svg = render(name, (1500, 960), |root| {
-            let body = titled(root, &title)?;
-            let cells = body.split_evenly((2, 3));
-            for (area, panel) in cells.iter().zip(&panels) {
-                draw_panel(area, panel)?;
-            }
-            draw_key(&cells[5], &entries, &notes)
-        })?;
+        let notes = vec![format!(
+            "f_max = n√κ · 1574.8 Hz (37); paper motor, Table 1 actuator, stroke 25 µm; n = {n_lo} … {n_hi}; lines guide the eye"
+        )];
         Ok(Figure {
             name: name.to_owned(),
-            svg,
+            plot: Plot::grid(panels, 3, 0.8).with_notes(notes),
             csv: csv.finish(),
+            preset: Preset::DoubleColumn,
         })
     };
     Ok([make(false)?, make(true)?])
 }
 
-/// The legend as a column, then notes, in the free sixth cell.
-fn draw_key(area: &Area<'_>, entries: &[LegendEntry], notes: &[String]) -> DrawResult {
-    let lh = line_height(size::LEGEND) + 4;
-    let (w, _) = area.dim_in_pixel();
-    let widest = entries
-        .iter()
-        .map(|e| super::SWATCH + 8 + text_width(&e.label, size::LEGEND))
-        .chain(notes.iter().map(|n| text_width(n, size::LEGEND)))
-        .max()
-        .unwrap_or(0);
-    let x = ((w as i32 - widest) / 2).max(4);
-    let mut y = 40;
-    for e in entries {
-        super::draw_legend_entry(area, e, (x, y))?;
-        y += lh;
-    }
-    y += lh / 2;
-    for n in notes {
-        area.draw_text(
-            n,
-            &font(size::LEGEND).pos(Pos::new(HPos::Left, VPos::Center)),
-            (x, y),
-        )?;
-        y += lh;
-    }
-    Ok(())
+/// The look of the `c`-th level: its own colour, dash pattern and marker
+/// (every point is a case of the grid).
+fn level_look(c: usize) -> Look {
+    const MARKERS: [super::Marker; 6] = [
+        super::Marker::Circle,
+        super::Marker::Square,
+        super::Marker::Triangle,
+        super::Marker::Diamond,
+        super::Marker::TriangleDown,
+        super::Marker::Plus,
+    ];
+    Look::nth(c).with_marker(MARKERS[c % MARKERS.len()])
 }
 
 #[cfg(test)]
@@ -389,7 +319,7 @@ mod tests {
         for (max, top) in [(0.29, 0.4), (47.0, 50.0), (1.3, 1.5)] {
             assert!((nice_top(max) - top).abs() < 1e-12 * top, "{max}");
         }
-        for (min, bottom) in [(0.49, 0.0999), (1.5, 0.999), (60.0, 9.99)] {
+        for (min, bottom) in [(0.49, 0.1), (1.5, 1.0), (60.0, 10.0)] {
             assert!((nice_bottom(min) - bottom).abs() < 1e-12 * bottom, "{min}");
         }
     }

@@ -13,14 +13,13 @@
 //!   data in the legend.
 
 use super::{
-    Axis, Cell, Csv, Figure, Mark, Note, PALETTE, Panel, PlotError, REFERENCE, Series, draw_panel,
-    legend_of, loglog_slope, min_max, render, titled, with_legend_on_top,
+    Anchor, Axis, Cell, Csv, Figure, Look, Marker, Panel, Plot, PlotError, Preset, Series,
+    loglog_slope, min_max,
 };
 use crate::motor::Motor;
 use crate::scene::Scene;
 use crate::signal::SignalSpec;
 use crate::simulation;
-use plotters::style::text_anchor::{HPos, VPos};
 use rayon::prelude::*;
 
 /// Figure 9: `f_max` (37) and `f_allowed` (43) against the stroke.
@@ -49,67 +48,44 @@ pub fn figure9(motor: &Motor) -> Result<Figure, PlotError> {
         Axis::log("frequency (kHz)", (0.3, 1e3)).scaled(1e-3),
     );
     p.series.push(Series::line(
-        Some("f_max ∝ 1/√x̂_R (37): n = 2, √κ = 6"),
+        Some("f_max ∝ 1/√x̂_R (37)"),
         // Power laws are straight on log-log axes: the ends draw them exactly.
         [strokes[0], strokes[strokes.len() - 1]]
             .iter()
             .map(|&x| (x, f_max(x)))
             .collect(),
-        PALETTE[0],
-        Mark::Line(3),
+        Look::nth(1).weighted(1.4),
     ));
     p.series.push(Series::line(
-        Some("f_allowed ∝ 1/x̂_R (43), equal to f_max at 25 µm"),
+        Some("f_allowed ∝ 1/x̂_R (43)"),
         [strokes[0], strokes[strokes.len() - 1]]
             .iter()
             .map(|&x| (x, f_allowed(x)))
             .collect(),
-        PALETTE[1],
-        Mark::Line(3),
+        Look::nth(2).weighted(1.4),
     ));
     p.series.push(Series::line(
-        Some("f_max = f_allowed: the best design"),
+        Some("best design, f_max = f_allowed"),
         vec![(x_design, 1e2), (x_design, 1e6)],
-        REFERENCE,
-        Mark::Dashed(2, 4, 4),
+        Look::reference(),
     ));
-    p.series.push(Series::line(
+    p.series.push(Series::points(
         None,
         vec![(x_design, f_design)],
-        PALETTE[7],
-        Mark::Points(6),
+        Look::nth(0).with_marker(Marker::Circle),
     ));
-    p.notes.push(Note {
-        at: (5e-6, 0.6e3),
-        text: "f_max < f_allowed: bandwidth not fully used".to_owned(),
-        h: HPos::Center,
-        v: VPos::Center,
-    });
-    p.notes.push(Note {
-        at: (2.0e-4, 0.6e3),
-        text: "f_max > f_allowed: velocity impaired".to_owned(),
-        h: HPos::Center,
-        v: VPos::Center,
-    });
-    p.notes.push(Note {
-        at: (x_design * 1.25, f_design * 1.25),
-        text: format!("{:.1} kHz at 25 µm", f_design / 1e3),
-        h: HPos::Left,
-        v: VPos::Bottom,
-    });
-    let legend = legend_of(&[&p]);
-    let svg = render(NAME, (1000, 720), |root| {
-        let body = titled(
-            root,
-            "Figure 9 (schematic): f_max and f_allowed against the actuator stroke",
-        )?;
-        let body = with_legend_on_top(&body, &legend)?;
-        draw_panel(&body, &p)
-    })?;
+    p.note((5e-6, 1.2e3), "bandwidth unused", Anchor::Middle);
+    p.note((1.8e-4, 3e5), "velocity impaired", Anchor::Middle);
+    p.note(
+        (x_design * 1.3, f_design * 1.3),
+        &format!("{:.1} kHz at 25 µm", f_design / 1e3),
+        Anchor::Start,
+    );
     Ok(Figure {
         name: NAME.to_owned(),
-        svg,
+        plot: Plot::grid(vec![p], 1, 0.75),
         csv: csv.finish(),
+        preset: Preset::SingleColumn,
     })
 }
 
@@ -228,29 +204,19 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
         }
     }
     let quantities = [
-        (
-            "(a) steady-state velocity (39), expected slope 1/2",
-            "v∞ (m/s)",
-            0.5,
-        ),
-        (
-            "(b) steady-state step (38), expected slope 1",
-            "x∞ = v∞·T (m)",
-            1.0,
-        ),
-        (
-            "(c) start-up time (42), expected slope 1/2",
-            "T·p₀.₉₉ (s)",
-            0.5,
-        ),
+        ("(a) v∞ (39): slope ½", "v∞ (m/s)", 0.5),
+        ("(b) x∞ (38): slope 1", "x∞ = v∞·T (m)", 1.0),
+        ("(c) T·p₀.₉₉ (42): slope ½", "T·p₀.₉₉ (s)", 0.5),
     ];
+    const SHAPE_MARKERS: [Marker; 3] = [Marker::Circle, Marker::Square, Marker::Triangle];
     let mut panels = Vec::new();
+    let mut slopes = Vec::new();
     for (q, (title, label, _)) in quantities.iter().enumerate() {
         let (lo, hi) = min_max(data.iter().flat_map(|d| d[q].iter().map(|p| p.1)));
-        // Whole decades, a hair wider so that the end decades keep their ticks.
+        // Whole decades.
         let y_range = (
-            0.999 * 10f64.powf(lo.log10().floor()),
-            1.001 * 10f64.powf(hi.log10().ceil()),
+            10f64.powf(lo.log10().floor()),
+            10f64.powf(hi.log10().ceil()),
         );
         let mut p = Panel::new(
             Some(title),
@@ -260,36 +226,26 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
             ),
             Axis::log(label, y_range),
         );
+        let mut line = format!("{} fitted log-log slopes:", &title[..3]);
         for (s, shape) in SHAPES.iter().enumerate() {
             let slope = loglog_slope(&data[s][q]);
-            let mark = if s % 2 == 0 {
-                Mark::LinePoints(2)
-            } else {
-                Mark::LineSquares(2)
-            };
+            line.push_str(&format!(
+                " {slope:.9}{}",
+                if s + 1 < SHAPES.len() { "," } else { "" }
+            ));
             p.series.push(Series::line(
-                Some(&format!("{}: slope {slope:.9}", shape.label)),
+                Some(shape.label),
                 data[s][q].clone(),
-                PALETTE[s],
-                mark,
+                Look::nth(s).with_marker(SHAPE_MARKERS[s % SHAPE_MARKERS.len()]),
             ));
         }
+        slopes.push(line);
         panels.push(p);
     }
-    let svg = render(NAME, (1600, 640), |root| {
-        let body = titled(
-            root,
-            "Stroke scaling law: fixed signal shape, T ∝ √x̂_R (40); least-squares log-log slopes in the legends",
-        )?;
-        for (a, p) in body.split_evenly((1, 3)).iter().zip(&panels) {
-            let rest = with_legend_on_top(a, &legend_of(&[p]))?;
-            draw_panel(&rest, p)?;
-        }
-        Ok(())
-    })?;
     Ok(Figure {
         name: NAME.to_owned(),
-        svg,
+        plot: Plot::grid(panels, 3, 0.9).with_notes(slopes),
         csv: csv.finish(),
+        preset: Preset::DoubleColumn,
     })
 }

@@ -16,15 +16,16 @@
 //! * Figure 5: signals of equal `f_max = n sqrt(kappa) f_0(kappa = 1)` (37):
 //!   more harmonics mean a lower fundamental frequency.
 
+use super::style::BAND;
 use super::{
-    Area, Axis, Cell, Csv, Figure, Mark, PALETTE, Panel, PlotError, REFERENCE, Series, draw_panel,
-    legend_of, linspace, min_max, padded, render, side_by_side, titled, with_legend_on_top,
+    Axis, Cell, Csv, Dash, Figure, Look, Marker, Panel, Plot, PlotError, Preset, Series, linspace,
+    min_max, padded,
 };
 use crate::motor::Motor;
 use crate::signal::fourier::sigma_factor;
 use crate::signal::{FourierSignal, IdealShape, IdealSignal, RodState, Signal, SignalSpec};
 
-/// Samples per curve (about two per pixel of a panel).
+/// Samples per curve (several per printed point of a panel).
 const SAMPLES: usize = 1201;
 
 /// Stroke of the paper's motor (m).
@@ -128,7 +129,6 @@ pub fn figure2(motor: &Motor) -> Result<Figure, PlotError> {
         ("(b) continuous, t₁ = T", 1.0),
     ];
     let orders = [2usize, 15];
-    let colors = [PALETTE[1], PALETTE[0]];
     let mut csv = Csv::new(
         &[
             "Figure 2: ideal rod signal (11) and its Fourier partial sums (8) with coefficients (12)-(14), before stroke scaling and shift.",
@@ -223,28 +223,23 @@ pub fn figure2(motor: &Motor) -> Result<Figure, PlotError> {
                 let mut p = Panel::new(
                     (row == 0).then_some(title),
                     t_axis(),
-                    Axis::linear(y_label, range)
-                        .scaled(scale)
-                        .ticks(if zoom { 9 } else { 6 }),
+                    Axis::linear(y_label, range).scaled(scale).with_ticks(4),
                 );
-                p.y_label_area = 92;
                 if matches!(q, Quantity::Acceleration) {
                     push_stick_band(&mut p, a0, period);
                 }
                 p.series.push(Series::line(
-                    Some("ideal signal (11); vertical lines: jump at t₁, infinite v or a"),
+                    Some("ideal signal (11)"),
                     ideal_pts,
-                    PALETTE[7],
-                    Mark::Line(2),
+                    Look::nth(0).weighted(1.3),
                 ));
-                for ((n, c), pts) in orders.iter().zip(colors).zip(curves) {
+                for (i, (n, pts)) in orders.iter().zip(curves).enumerate() {
                     // In the zoom n = 15 crosses the panel many times: thin.
-                    let width = if zoom && *n > 2 { 1 } else { 2 };
+                    let weight = if zoom && *n > 2 { 0.7 } else { 1.0 };
                     p.series.push(Series::line(
-                        Some(&format!("partial sum, n = {n}")),
+                        Some(&format!("partial sum (8), n = {n}")),
                         pts,
-                        c,
-                        Mark::Line(width),
+                        Look::nth(i + 1).weighted(weight),
                     ));
                 }
                 p
@@ -252,42 +247,20 @@ pub fn figure2(motor: &Motor) -> Result<Figure, PlotError> {
             .collect();
         panels.push(column);
     }
-    let legend = legend_of(&panels.iter().flat_map(|c| c.iter()).collect::<Vec<_>>());
-    let svg = render(NAME, (1500, 1560), |root| {
-        let body = titled(
-            root,
-            "Figure 2: ideal rod signals and their Fourier approximations (κ = 1; acceleration: full range and zoom)",
-        )?;
-        let body = with_legend_on_top(&body, &legend)?;
-        let cols = body.split_evenly((1, 2));
-        for (area, column) in cols.iter().zip(&panels) {
-            let rows = split_rows(area, &[1.15, 1.0, 1.0, 1.0]);
-            for (a, p) in rows.iter().zip(column.iter()) {
-                draw_panel(a, p)?;
-            }
-        }
-        Ok(())
-    })?;
     Ok(Figure {
         name: NAME.to_owned(),
-        svg,
+        plot: Plot::grid(by_rows(panels), 2, 0.5),
         csv: csv.finish(),
+        preset: Preset::DoubleColumn,
     })
 }
 
-/// Splits `area` into rows with heights proportional to `weights`.
-pub(crate) fn split_rows<'a>(area: &Area<'a>, weights: &[f64]) -> Vec<Area<'a>> {
-    let (_, h) = area.dim_in_pixel();
-    let total: f64 = weights.iter().sum();
-    let mut acc = 0.0;
-    let breaks: Vec<i32> = weights[..weights.len() - 1]
-        .iter()
-        .map(|w| {
-            acc += w;
-            (acc / total * h as f64).round() as i32
-        })
-        .collect();
-    area.split_by_breakpoints(Vec::<i32>::new(), breaks)
+/// Panels given column by column, in row order.
+fn by_rows(columns: Vec<Vec<Panel>>) -> Vec<Panel> {
+    let rows = columns.iter().map(Vec::len).max().unwrap_or(0);
+    (0..rows)
+        .flat_map(|r| columns.iter().filter_map(move |c| c.get(r).cloned()))
+        .collect()
 }
 
 // ------------------------------------------------------------ figure 3 ----
@@ -295,6 +268,13 @@ pub(crate) fn split_rows<'a>(area: &Area<'a>, weights: &[f64]) -> Vec<Area<'a>> 
 /// Figure 3: normalised amplitudes `d_k / x_hat` of the stroke-scaled
 /// continuous signal, without and with sigma factors, `n` = 2, 5, 10, 15.
 pub fn figure3(motor: &Motor) -> Result<Figure, PlotError> {
+    // Every amplitude is a marked point (the lines only guide the eye).
+    const MARKERS: [Marker; 4] = [
+        Marker::Circle,
+        Marker::Square,
+        Marker::Triangle,
+        Marker::Diamond,
+    ];
     const NAME: &str = "fig3_harmonic_amplitudes";
     let orders = [2usize, 5, 10, 15];
     let mut csv = Csv::new(
@@ -313,10 +293,11 @@ pub fn figure3(motor: &Motor) -> Result<Figure, PlotError> {
         };
         let mut p = Panel::new(
             Some(title),
-            Axis::linear("harmonic number k (–)", (0.5, 16.5)).ticks(16),
-            Axis::linear("normalised amplitude d_k / x̂_R (–)", (0.0, 0.5)),
+            Axis::linear("harmonic number k", (0.5, 16.5))
+                .with_ticks(8)
+                .integers(),
+            Axis::linear("amplitude d_k / x̂_R", (0.0, 0.5)),
         );
-        p.y_label_area = 84;
         for (i, &n) in orders.iter().enumerate() {
             let s = built(1.0, n, sigma, motor, NAME)?;
             let mut pts: Vec<(f64, f64)> = s
@@ -346,16 +327,10 @@ pub fn figure3(motor: &Motor) -> Result<Figure, PlotError> {
                     }),
                 ]);
             }
-            let mark = if i % 2 == 0 {
-                Mark::LinePoints(2)
-            } else {
-                Mark::LineSquares(2)
-            };
             p.series.push(Series::line(
                 Some(&format!("n = {n}")),
                 pts,
-                PALETTE[i],
-                mark,
+                Look::nth(i).with_marker(MARKERS[i]),
             ));
         }
         panels.push(p);
@@ -372,13 +347,12 @@ pub fn figure3(motor: &Motor) -> Result<Figure, PlotError> {
     for p in &mut panels {
         p.y.range = (0.0, (top * 1.08 / 0.05).ceil() * 0.05);
     }
-    side_by_side(
-        NAME,
-        (1300, 620),
-        "Figure 3: normalised harmonic amplitudes, continuous signal, κ = 1 (lines for visual guidance)",
-        &panels,
-        csv,
-    )
+    Ok(Figure {
+        name: NAME.to_owned(),
+        plot: Plot::grid(panels, 2, 0.75),
+        csv: csv.finish(),
+        preset: Preset::DoubleColumn,
+    })
 }
 
 // ------------------------------------------------------------ figure 4 ----
@@ -454,41 +428,20 @@ pub fn figure4(motor: &Motor) -> Result<Figure, PlotError> {
             if matches!(q, Quantity::Acceleration) {
                 push_stick_band(&mut p, a0, period);
             }
-            p.series.push(Series::line(
-                Some("without σ factors"),
-                c1,
-                PALETTE[0],
-                Mark::Line(2),
-            ));
-            p.series.push(Series::line(
-                Some("with σ factors (15)"),
-                c2,
-                PALETTE[1],
-                Mark::Line(2),
-            ));
+            p.series
+                .push(Series::line(Some("without σ factors"), c1, Look::nth(0)));
+            p.series
+                .push(Series::line(Some("with σ factors (15)"), c2, Look::nth(1)));
             p
         })
         .collect();
         columns.push(column);
     }
-    let legend = legend_of(&columns.iter().flat_map(|c| c.iter()).collect::<Vec<_>>());
-    let svg = render(NAME, (1400, 1080), |root| {
-        let body = titled(
-            root,
-            "Figure 4: rod signals for continuous operation, κ = 1, scaled to the stroke of 25 µm",
-        )?;
-        let body = with_legend_on_top(&body, &legend)?;
-        for (area, column) in body.split_evenly((1, 2)).iter().zip(&columns) {
-            for (a, p) in split_rows(area, &[1.1, 1.0, 1.0]).iter().zip(column.iter()) {
-                draw_panel(a, p)?;
-            }
-        }
-        Ok(())
-    })?;
     Ok(Figure {
         name: NAME.to_owned(),
-        svg,
+        plot: Plot::grid(by_rows(columns), 2, 0.5),
         csv: csv.finish(),
+        preset: Preset::DoubleColumn,
     })
 }
 
@@ -551,35 +504,40 @@ pub fn figure5(motor: &Motor) -> Result<Figure, PlotError> {
                     Cell::F(x),
                 ]);
             }
-            let label = format!("n = {n}, √κ = {}", super::tick_label(*sk));
-            p.series
-                .push(Series::line(Some(&label), pts, PALETTE[i], Mark::Line(2)));
+            let label = format!("n = {n}, √κ = {}", short(*sk));
+            p.series.push(Series::line(Some(&label), pts, Look::nth(i)));
         }
         panels.push(p);
     }
-    let f_max = orders[0] as f64 * signals[0].3.f0();
-    side_by_side(
-        NAME,
-        (1400, 600),
-        &format!(
-            "Figure 5: rod signals of equal maximum frequency f_max = n·f₀ = {:.0} Hz (n√κ = 6)",
-            f_max
-        ),
-        &panels,
-        csv,
-    )
+    Ok(Figure {
+        name: NAME.to_owned(),
+        plot: Plot::grid(panels, 2, 0.7),
+        csv: csv.finish(),
+        preset: Preset::DoubleColumn,
+    })
 }
 
-/// The stick band `±a_0` as two dashed lines over one period.
-fn push_stick_band(p: &mut Panel, a0: f64, period: f64) {
-    let band = "stick band ±a₀ = ±124 m/s²";
-    for level in [a0, -a0] {
-        p.series.push(Series::hline(
-            Some(band),
-            level,
-            (0.0, period),
-            REFERENCE,
-            Mark::Dashed(2, 8, 5),
-        ));
+/// A number with at most three significant decimals, for labels.
+fn short(v: f64) -> String {
+    let s = format!("{v:.3}");
+    s.trim_end_matches('0').trim_end_matches('.').to_owned()
+}
+
+/// The stick band `±a_0`, shaded under the curves.
+pub(crate) fn push_stick_band(p: &mut Panel, a0: f64, period: f64) {
+    p.series.push(Series::bands(
+        Some("stick band ±a₀"),
+        vec![[(0.0, -a0), (period, a0)]],
+        band_look(),
+    ));
+}
+
+/// The look of the stick band: a light grey fill.
+pub(crate) fn band_look() -> Look {
+    Look {
+        color: BAND,
+        dash: Dash::NoLine,
+        marker: Marker::None,
+        weight: 1.0,
     }
 }

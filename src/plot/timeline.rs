@@ -15,10 +15,10 @@
 //! Both come from the exact segments and the event log of the event
 //! engine run period by period from rest.
 
-use super::velocity::sample_segments;
+use super::style::{GREY, PALETTE};
 use super::{
-    Axis, Cell, Csv, Figure, Mark, PALETTE, Panel, PlotError, REFERENCE, Series, draw_panel,
-    legend_of, min_max, padded, render, titled, with_legend_on_top,
+    Axis, Cell, Csv, Dash, Figure, Kind, Look, Marker, Panel, Plot, PlotError, Preset, Series,
+    min_max, padded,
 };
 use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::{Direction, EventKind, Mode, PeriodEngine, PeriodStart, Segment};
@@ -26,7 +26,66 @@ use crate::observer::Observer;
 use crate::scene::Scene;
 use crate::signal::{Signal, SignalSpec};
 use crate::simulation;
-use plotters::prelude::RGBColor;
+
+/// A sample of the exact motion, for drawing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Sample {
+    /// Phase in the period (s).
+    pub phase: f64,
+    /// Rod velocity (m/s).
+    pub v_rod: f64,
+    /// Slider velocity (m/s).
+    pub v_slider: f64,
+    /// The slider's mode on the segment the sample belongs to.
+    pub mode: Mode,
+}
+
+/// Samples each segment at its ends and about `per_period` points per
+/// period inside; the slider velocity is exact (linear in slip, the rod's
+/// in stick). Returns one polyline per segment.
+pub(crate) fn sample_segments(
+    segments: &[Segment],
+    signal: &Signal,
+    per_period: usize,
+) -> Vec<Vec<Sample>> {
+    let period = signal.period();
+    segments
+        .iter()
+        .map(|s| {
+            let inner = ((s.duration() / period) * per_period as f64).ceil() as usize;
+            let count = inner.max(1) + 1;
+            (0..count)
+                .map(|i| {
+                    let phase = if i + 1 == count {
+                        s.end
+                    } else {
+                        s.start + s.duration() * i as f64 / (count - 1) as f64
+                    };
+                    // Segment ends use the engine's own (left/right limit)
+                    // values; inner points the signal.
+                    let v_rod = if i == 0 {
+                        s.rod_start.v
+                    } else if i + 1 == count {
+                        s.rod_end.v
+                    } else {
+                        signal.velocity(phase)
+                    };
+                    let v_slider = match s.mode {
+                        Mode::Stick => v_rod,
+                        Mode::Slip(_) if i + 1 == count => s.slider_end.v,
+                        Mode::Slip(_) => s.slider_start.v + s.slip_acceleration * (phase - s.start),
+                    };
+                    Sample {
+                        phase,
+                        v_rod,
+                        v_slider,
+                        mode: s.mode,
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
 
 /// Segments in time order, each with the event that ended it (`None`: the
 /// period ended).
@@ -68,19 +127,22 @@ fn event_name(kind: &EventKind) -> &'static str {
     }
 }
 
-fn mode_color(mode: Mode) -> RGBColor {
+/// The look of the slider's curve in a mode: distinct dash patterns, and
+/// colours of distinct lightness (black, blue, orange) so that the raster
+/// of panel (b) reads in greyscale too.
+pub(crate) fn mode_look(mode: Mode) -> Look {
     match mode {
-        Mode::Stick => PALETTE[2],
-        Mode::Slip(Direction::Forward) => PALETTE[0],
-        Mode::Slip(Direction::Backward) => PALETTE[1],
+        Mode::Stick => Look::line(PALETTE[0], Dash::Solid).weighted(1.6),
+        Mode::Slip(Direction::Forward) => Look::line(PALETTE[1], Dash::Dashed).weighted(1.3),
+        Mode::Slip(Direction::Backward) => Look::line(PALETTE[5], Dash::Dotted).weighted(1.6),
     }
 }
 
 fn mode_label(mode: Mode) -> &'static str {
     match mode {
         Mode::Stick => "stick",
-        Mode::Slip(Direction::Forward) => "slip forward (rod faster than slider)",
-        Mode::Slip(Direction::Backward) => "slip backward (slider faster than rod)",
+        Mode::Slip(Direction::Forward) => "slip forward",
+        Mode::Slip(Direction::Backward) => "slip backward",
     }
 }
 
@@ -90,13 +152,9 @@ const MODES: [Mode; 3] = [
     Mode::Slip(Direction::Backward),
 ];
 
-/// Runs `periods` periods from rest and returns the timeline, the signal's
-/// period and `p_0.99` of the full run.
-fn simulate(
-    scene: &Scene,
-    periods: u64,
-    figure: &str,
-) -> Result<(Timeline, Signal, Option<u64>), PlotError> {
+/// Runs `periods` periods from rest and returns the timeline and the
+/// signal.
+fn record(scene: &Scene, periods: u64, figure: &str) -> Result<(Timeline, Signal), PlotError> {
     let (signal, motor) = simulation::build(scene).map_err(PlotError::simulation(figure))?;
     let mut timeline = Timeline::default();
     {
@@ -115,6 +173,16 @@ fn simulate(
             };
         }
     }
+    Ok((timeline, signal))
+}
+
+/// [`record`], and `p_0.99` of the full run.
+fn simulate(
+    scene: &Scene,
+    periods: u64,
+    figure: &str,
+) -> Result<(Timeline, Signal, Option<u64>), PlotError> {
+    let (timeline, signal) = record(scene, periods, figure)?;
     let report = simulation::run(scene).map_err(PlotError::simulation(figure))?;
     Ok((timeline, signal, report.startup_periods))
 }
@@ -186,19 +254,10 @@ pub fn event_timeline(base: &Scene) -> Result<Figure, PlotError> {
     let t_end = periods_a as f64 * period_a;
     let (lo, hi) = min_max(samples.iter().flatten().flat_map(|s| [s.v_rod, s.v_slider]));
     let mut a = Panel::new(
-        Some(
-            "(a) n = 5, κ = 0.36, σ factors: velocities over the first periods from rest, slider coloured by mode",
-        ),
+        Some("(a) n = 5, κ = 0.36, σ: velocities from rest"),
         Axis::linear("t (ms)", (0.0, t_end * 1e3)).scaled(1e3),
         Axis::linear("velocity (m/s)", padded(lo, hi, 0.06)),
     );
-    a.series.push(Series::hline(
-        None,
-        0.0,
-        (0.0, t_end),
-        REFERENCE,
-        Mark::Line(1),
-    ));
     a.series.push(Series {
         label: Some("rod velocity".to_owned()),
         pieces: vec![
@@ -208,8 +267,8 @@ pub fn event_timeline(base: &Scene) -> Result<Figure, PlotError> {
                 .flat_map(|(seg, ss)| ss.iter().map(move |s| (abs_t(seg, s.phase), s.v_rod)))
                 .collect(),
         ],
-        color: RGBColor(150, 150, 150),
-        mark: Mark::Line(2),
+        look: Look::line(GREY, Dash::DashDot).weighted(0.8),
+        kind: Kind::Curve,
     });
     for mode in MODES {
         let pieces: Vec<Vec<(f64, f64)>> = tl_a
@@ -219,7 +278,7 @@ pub fn event_timeline(base: &Scene) -> Result<Figure, PlotError> {
             .filter(|(seg, _)| seg.mode == mode)
             .map(|(seg, ss)| {
                 // A slip segment is a straight line: its ends draw it exactly.
-                let keep: Vec<&super::velocity::Sample> = match mode {
+                let keep: Vec<&Sample> = match mode {
                     Mode::Stick => ss.iter().collect(),
                     Mode::Slip(_) => [ss.first(), ss.last()].into_iter().flatten().collect(),
                 };
@@ -229,10 +288,10 @@ pub fn event_timeline(base: &Scene) -> Result<Figure, PlotError> {
             })
             .collect();
         a.series.push(Series {
-            label: Some(mode_label(mode).to_owned()),
+            label: Some(format!("slider: {}", mode_label(mode))),
             pieces,
-            color: mode_color(mode),
-            mark: Mark::Line(4),
+            look: mode_look(mode),
+            kind: Kind::Curve,
         });
     }
     let events: Vec<Vec<(f64, f64)>> = tl_a
@@ -245,66 +304,134 @@ pub fn event_timeline(base: &Scene) -> Result<Figure, PlotError> {
     a.series.push(Series {
         label: Some("event".to_owned()),
         pieces: events,
-        color: PALETTE[7],
-        mark: Mark::Points(4),
+        look: Look::nth_points(0).with_marker(Marker::Circle),
+        kind: Kind::Points,
     });
     if let Some(p) = p99_a {
         let t = p as f64 * period_a;
         a.series.push(Series::line(
-            Some("end of the start-up, t = T·p₀.₉₉"),
+            Some("end of the start-up, p₀.₉₉"),
             vec![(t, -1e3), (t, 1e3)],
-            PALETTE[7],
-            Mark::Dashed(2, 8, 5),
+            Look::reference(),
         ));
     }
 
     // (b): raster of modes, one row per period.
-    let period_b = sig_b.period();
+    let b = raster(
+        Some("(b) n = 2, √κ = 6, σ: modes, one row per period"),
+        &tl_b,
+        &sig_b,
+        periods_b,
+        Some(p99_b),
+    );
+
+    Ok(Figure {
+        name: NAME.to_owned(),
+        plot: Plot::grid(vec![a, b], 1, 0.45),
+        csv: csv.finish(),
+        preset: Preset::DoubleColumn,
+    })
+}
+
+/// A raster of the slider's modes, one row per period from `p = 1`, with
+/// `p_0.99` marked.
+fn raster(
+    title: Option<&str>,
+    tl: &Timeline,
+    signal: &Signal,
+    periods: u64,
+    p99: Option<u64>,
+) -> Panel {
+    let period = signal.period();
+    let (scale, unit) = if period < 1e-3 {
+        (1e6, "µs")
+    } else {
+        (1e3, "ms")
+    };
     let mut b = Panel::new(
-        Some(
-            "(b) n = 2, √κ = 6, σ factors (the paper's default): mode raster over the start-up, one row per period",
-        ),
-        Axis::linear("time in the period, t − (p−1)T (µs)", (0.0, period_b * 1e6)).scaled(1e6),
-        Axis::linear("period p (–)", (0.0, periods_b as f64)).ticks(8),
+        title,
+        Axis::linear(
+            &format!("time in the period ({unit})"),
+            (0.0, period * scale),
+        )
+        .scaled(scale),
+        Axis::linear("period p", (0.0, periods as f64)).integers(),
     );
     for mode in MODES {
-        let rects: Vec<(f64, f64)> = tl_b
+        let rects: Vec<[(f64, f64); 2]> = tl
             .segments
             .iter()
             .filter(|s| s.mode == mode && s.end > s.start)
-            .flat_map(|s| [(s.start, (s.period - 1) as f64), (s.end, s.period as f64)])
+            .map(|s| [(s.start, (s.period - 1) as f64), (s.end, s.period as f64)])
             .collect();
         if !rects.is_empty() {
-            b.series.push(Series {
-                label: Some(mode_label(mode).to_owned()),
-                pieces: vec![rects],
-                color: mode_color(mode),
-                mark: Mark::Rects,
-            });
+            b.series.push(Series::bands(
+                Some(&format!("raster: {}", mode_label(mode))),
+                rects,
+                mode_look(mode),
+            ));
         }
     }
-    b.series.push(Series::hline(
-        Some("end of the start-up, t = T·p₀.₉₉"),
-        p99_b as f64,
-        (0.0, period_b),
-        PALETTE[7],
-        Mark::Dashed(2, 8, 5),
-    ));
+    if let Some(p) = p99 {
+        b.series.push(Series::hline(
+            Some("end of the start-up, p₀.₉₉"),
+            p as f64,
+            (0.0, period),
+            Look::reference(),
+        ));
+    }
+    b
+}
 
-    let legend = legend_of(&[&a, &b]);
-    let svg = render(NAME, (1500, 1200), |root| {
-        let body = titled(
-            root,
-            "Event timeline: the slider's modes over the start-up from rest",
-        )?;
-        let body = with_legend_on_top(&body, &legend)?;
-        let rows = super::signals::split_rows(&body, &[1.0, 1.35]);
-        draw_panel(&rows[0], &a)?;
-        draw_panel(&rows[1], &b)
-    })?;
+/// Most periods the scene timeline draws (one raster row each).
+const MAX_TIMELINE_PERIODS: u64 = 5_000;
+
+/// The event timeline of one scene: the raster of its modes over the
+/// start-up from rest (to a tenth past `p_0.99`, at least 20 periods; or
+/// the periods simulated when there is no steady state), every segment
+/// and the event that ends it in the CSV.
+pub fn scene_timeline(scene: &Scene, name: &str) -> Result<Figure, PlotError> {
+    let mut quiet = scene.clone();
+    quiet.outputs.trajectory = false;
+    quiet.outputs.events = false;
+    let outcome = simulation::simulate(&quiet).map_err(PlotError::simulation(name))?;
+    let p99 = outcome.report().and_then(|r| r.startup_periods);
+    let periods = p99
+        .map_or(outcome.periods_simulated(), |p| p + p / 10)
+        .clamp(20, MAX_TIMELINE_PERIODS);
+    let (tl, signal) = record(scene, periods, name)?;
+    let mut csv = Csv::new(
+        &[
+            &format!(
+                "Event timeline of the scene: every exact segment of the motion from rest over {periods} periods (T = {:e} s, p_0.99 = {}, outcome {}),",
+                signal.period(),
+                p99.map_or("none".to_owned(), |p| p.to_string()),
+                outcome.regime()
+            ),
+            "with its mode and the event that ends it (period_end: the period ended). Phases in s within the period.",
+        ],
+        &[
+            "period",
+            "start_phase_s",
+            "end_phase_s",
+            "mode",
+            "ends_with",
+        ],
+    );
+    for (s, end) in tl.segments.iter().zip(&tl.ends) {
+        csv.row(&[
+            Cell::I(s.period as i64),
+            Cell::F(s.start),
+            Cell::F(s.end),
+            Cell::S(s.mode.name()),
+            Cell::S(end.as_ref().map_or("period_end", event_name)),
+        ]);
+    }
+    let panel = raster(None, &tl, &signal, periods, p99);
     Ok(Figure {
-        name: NAME.to_owned(),
-        svg,
+        name: name.to_owned(),
+        plot: Plot::grid(vec![panel], 1, 0.7),
         csv: csv.finish(),
+        preset: Preset::SingleColumn,
     })
 }

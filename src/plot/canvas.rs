@@ -1,0 +1,276 @@
+//! The SVG document: a writer of the few elements figures use, in points
+//! (the document's user unit; its printed size is given in mm).
+//!
+//! Contract: numbers are written with at most two decimals (0.01 pt, far
+//! below what print resolves), so the text is the same on every machine;
+//! every text element carries its `font-size` in points; nothing is drawn
+//! in the background colour (there is no background element: the page is
+//! the background); markers are filled or stroked in the series' colour.
+
+use super::font::FAMILY;
+use super::style::{Dash, Look, Marker, Rgb};
+use std::fmt::Write as _;
+
+/// Horizontal anchor of a text.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Anchor {
+    /// Text starts at the point.
+    Start,
+    /// Text is centred on the point.
+    Middle,
+    /// Text ends at the point.
+    End,
+}
+
+impl Anchor {
+    fn name(self) -> &'static str {
+        match self {
+            Anchor::Start => "start",
+            Anchor::Middle => "middle",
+            Anchor::End => "end",
+        }
+    }
+}
+
+/// A number with at most two decimals, no trailing zeros, no `-0`.
+pub(crate) fn num(x: f64) -> String {
+    let r = (x * 100.0).round() / 100.0;
+    let s = format!("{r:.2}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".to_owned()
+    } else {
+        s.to_owned()
+    }
+}
+
+/// Escapes text for XML.
+pub(crate) fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// An SVG document being written.
+#[derive(Default)]
+pub(crate) struct Canvas {
+    body: String,
+}
+
+impl Canvas {
+    /// Opens a group for one series; [`Canvas::close`] ends it.
+    pub(crate) fn open_series(&mut self, label: &str, look: &Look, kind: &str) {
+        let _ = writeln!(
+            self.body,
+            r#"<g class="series" data-kind="{kind}" data-label="{}" data-color="{}" data-dash="{}" data-marker="{}">"#,
+            escape(label),
+            look.color,
+            look.dash.name(),
+            look.marker.name()
+        );
+    }
+
+    /// Closes a group.
+    pub(crate) fn close(&mut self) {
+        self.body.push_str("</g>\n");
+    }
+
+    fn stroke_attrs(&self, color: Rgb, width: f64, dash: Dash) -> String {
+        let mut s = format!(
+            r#"fill="none" stroke="{color}" stroke-width="{}" stroke-linejoin="round""#,
+            num(width)
+        );
+        if let Some(p) = dash.pattern() {
+            let parts: Vec<String> = p.iter().map(|d| num(d * width.max(0.6))).collect();
+            let _ = write!(s, r#" stroke-dasharray="{}""#, parts.join(" "));
+        }
+        if dash == Dash::Dotted {
+            s.push_str(r#" stroke-linecap="round""#);
+        }
+        s
+    }
+
+    /// A polyline through `points` (pt).
+    pub(crate) fn polyline(&mut self, points: &[(f64, f64)], color: Rgb, width: f64, dash: Dash) {
+        if points.len() < 2 || dash == Dash::NoLine {
+            return;
+        }
+        let attrs = self.stroke_attrs(color, width, dash);
+        self.body.push_str("<path d=\"");
+        for (i, (x, y)) in points.iter().enumerate() {
+            let cmd = if i == 0 { 'M' } else { 'L' };
+            let _ = write!(self.body, "{cmd}{} {}", num(*x), num(*y));
+        }
+        let _ = writeln!(self.body, "\" {attrs}/>");
+    }
+
+    /// A straight line.
+    pub(crate) fn line(&mut self, a: (f64, f64), b: (f64, f64), color: Rgb, width: f64) {
+        self.polyline(&[a, b], color, width, Dash::Solid);
+    }
+
+    /// An outlined rectangle (no fill).
+    pub(crate) fn frame(&mut self, x: f64, y: f64, w: f64, h: f64, color: Rgb, width: f64) {
+        let _ = writeln!(
+            self.body,
+            r#"<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="{color}" stroke-width="{}"/>"#,
+            num(x),
+            num(y),
+            num(w),
+            num(h),
+            num(width)
+        );
+    }
+
+    /// A filled rectangle without outline, its edges on whole pixels (so
+    /// that touching rectangles of a raster leave no seams).
+    pub(crate) fn fill_rect(&mut self, x: f64, y: f64, w: f64, h: f64, color: Rgb) {
+        if w <= 0.0 || h <= 0.0 {
+            return;
+        }
+        let _ = writeln!(
+            self.body,
+            r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{color}" shape-rendering="crispEdges"/>"#,
+            num(x),
+            num(y),
+            num(w),
+            num(h)
+        );
+    }
+
+    /// A marker of diameter `size` (pt) centred on `(x, y)`.
+    pub(crate) fn marker(&mut self, marker: Marker, (x, y): (f64, f64), size: f64, color: Rgb) {
+        let r = size / 2.0;
+        let fill = format!(r#"fill="{color}""#);
+        let stroke = format!(
+            r#"fill="none" stroke="{color}" stroke-width="{}""#,
+            num(size / 5.0)
+        );
+        let poly = |pts: &[(f64, f64)]| -> String {
+            let d: Vec<String> = pts
+                .iter()
+                .map(|(dx, dy)| format!("{},{}", num(x + dx * r), num(y + dy * r)))
+                .collect();
+            d.join(" ")
+        };
+        let line = match marker {
+            Marker::None => return,
+            Marker::Circle => format!(
+                r#"<circle cx="{}" cy="{}" r="{}" {fill}/>"#,
+                num(x),
+                num(y),
+                num(r * 0.9)
+            ),
+            Marker::Square => format!(
+                r#"<rect x="{}" y="{}" width="{}" height="{}" {fill}/>"#,
+                num(x - r * 0.8),
+                num(y - r * 0.8),
+                num(r * 1.6),
+                num(r * 1.6)
+            ),
+            Marker::Triangle => format!(
+                r#"<polygon points="{}" {fill}/>"#,
+                poly(&[(0.0, -1.1), (1.0, 0.65), (-1.0, 0.65)])
+            ),
+            Marker::TriangleDown => format!(
+                r#"<polygon points="{}" {fill}/>"#,
+                poly(&[(0.0, 1.1), (1.0, -0.65), (-1.0, -0.65)])
+            ),
+            Marker::Diamond => format!(
+                r#"<polygon points="{}" {fill}/>"#,
+                poly(&[(0.0, -1.1), (0.9, 0.0), (0.0, 1.1), (-0.9, 0.0)])
+            ),
+            Marker::Plus => format!(
+                r#"<path d="M{} {}H{}M{} {}V{}" {stroke}/>"#,
+                num(x - r),
+                num(y),
+                num(x + r),
+                num(x),
+                num(y - r),
+                num(y + r)
+            ),
+            Marker::Cross => {
+                let k = r * 0.8;
+                format!(
+                    r#"<path d="M{} {}L{} {}M{} {}L{} {}" {stroke}/>"#,
+                    num(x - k),
+                    num(y - k),
+                    num(x + k),
+                    num(y + k),
+                    num(x - k),
+                    num(y + k),
+                    num(x + k),
+                    num(y - k)
+                )
+            }
+        };
+        self.body.push_str(&line);
+        self.body.push('\n');
+    }
+
+    /// A text whose baseline starts (or ends, or is centred, by `anchor`)
+    /// at `(x, y)`, rotated by `rotate` degrees about that point.
+    pub(crate) fn text(
+        &mut self,
+        text: &str,
+        (x, y): (f64, f64),
+        size: f64,
+        anchor: Anchor,
+        rotate: f64,
+    ) {
+        let transform = if rotate == 0.0 {
+            String::new()
+        } else {
+            format!(
+                r#" transform="rotate({} {} {})""#,
+                num(rotate),
+                num(x),
+                num(y)
+            )
+        };
+        let _ = writeln!(
+            self.body,
+            r#"<text x="{}" y="{}" font-size="{}" text-anchor="{}"{transform}>{}</text>"#,
+            num(x),
+            num(y),
+            num(size),
+            anchor.name(),
+            escape(text)
+        );
+    }
+
+    /// The finished document: `width_mm` x `height_mm` printed, in points
+    /// inside, with `metadata` (program version, figure name).
+    pub(crate) fn finish(self, (width_mm, height_mm): (f64, f64), metadata: &str) -> String {
+        let pt = super::style::PT_PER_MM;
+        format!(
+            concat!(
+                r#"<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{w}mm" height="{h}mm" viewBox="0 0 {vw} {vh}">"#,
+                "\n<metadata>{meta}</metadata>\n",
+                r##"<g font-family="{family}" fill="#000000">"##,
+                "\n{body}</g>\n</svg>\n"
+            ),
+            w = num(width_mm),
+            h = num(height_mm),
+            vw = num(width_mm * pt),
+            vh = num(height_mm * pt),
+            meta = escape(metadata),
+            family = FAMILY,
+            body = self.body
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_have_two_decimals_and_no_negative_zero() {
+        assert_eq!(num(1.0), "1");
+        assert_eq!(num(1.256), "1.26");
+        assert_eq!(num(-0.001), "0");
+        assert_eq!(num(240.944), "240.94");
+    }
+}

@@ -1,0 +1,332 @@
+//! `stickslip plot` through `cli::main_with`: a scene's figures, a sweep
+//! output with failed and unsettled rows, print formats, and arguments
+//! validated like scenes (one line, exit 1, nothing created).
+
+use std::path::{Path, PathBuf};
+use stickslip::cli::{Streams, main_with};
+
+const SWEEP_CSV: &str = "# stickslip_version = 0.1.0, base_scene_hash = 0\n\
+case,level,harmonics,sigma,v_inf,regime,failure\n\
+0,3,2,false,0.03,slip-slip,\n\
+1,3,3,false,0.02,slip-slip,\n\
+2,3,4,false,,run-away,\n\
+3,6,2,false,0.07,stick-slip,\n\
+4,6,3,false,,,time limit reached\n\
+5,6,4,false,0.05,slip-slip,\n";
+
+fn cli(args: &[&str]) -> (u8, String, String) {
+    let (mut out, mut err) = (Vec::new(), Vec::new());
+    let mut streams = Streams {
+        out: &mut out,
+        err: &mut err,
+    };
+    let mut all = vec!["stickslip", "plot"];
+    all.extend_from_slice(args);
+    let code = main_with(all, &mut streams);
+    (
+        code,
+        String::from_utf8(out).unwrap(),
+        String::from_utf8(err).unwrap(),
+    )
+}
+
+/// A fresh directory for one test.
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("stickslip-plot-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn listing(d: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+#[test]
+fn a_scene_plot_writes_the_figure_and_its_data_the_same_twice() {
+    let d = dir("scene");
+    let out = d.join("motion.svg");
+    let args = [
+        "examples/scenes/stick_heavy.toml",
+        "-o",
+        s(&out),
+        "--periods",
+        "1,2-3,last",
+    ];
+    let (code, stdout, err) = cli(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("motion.svg") && stdout.contains("motion.csv"));
+    let first = std::fs::read(&out).unwrap();
+    let csv = std::fs::read_to_string(d.join("motion.csv")).unwrap();
+    for kind in ["stick_to_slip", "slip_to_stick"] {
+        assert!(
+            csv.contains(&format!(",event,0,{kind},")),
+            "events of kind {kind} in the CSV"
+        );
+    }
+    assert_eq!(cli(&args).0, 0);
+    assert_eq!(
+        std::fs::read(&out).unwrap(),
+        first,
+        "same inputs, same bytes"
+    );
+    for figure in ["startup", "timeline"] {
+        let out = d.join(format!("{figure}.pdf"));
+        let (code, _, err) = cli(&[
+            "examples/scenes/stick_heavy.toml",
+            "-o",
+            s(&out),
+            "--figure",
+            figure,
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert!(std::fs::read(&out).unwrap().starts_with(b"%PDF"));
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Failed and unsettled rows are drawn (on the bottom edge, by reason)
+/// and listed in the figure's CSV, never dropped.
+#[test]
+fn a_sweep_plot_shows_failed_and_unsettled_rows() {
+    let d = dir("sweep");
+    let input = d.join("grid.csv");
+    std::fs::write(&input, SWEEP_CSV).unwrap();
+    let out = d.join("v.svg");
+    let (code, _, err) = cli(&[
+        s(&input),
+        "-o",
+        s(&out),
+        "--x",
+        "harmonics",
+        "--y",
+        "v_inf",
+        "--series",
+        "level",
+        "--ref-y",
+        "0.06",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        svg.contains(r#"data-label="failed (1, at the bottom)""#),
+        "failed row drawn"
+    );
+    assert!(svg.contains(r#"data-label="run-away (1, at the bottom)""#));
+    let csv = std::fs::read_to_string(d.join("v.csv")).unwrap();
+    let rows = csv.lines().filter(|l| !l.starts_with('#')).count() - 1;
+    assert_eq!(rows, 6, "every input row in the figure's data");
+    assert!(csv.contains(",failed\n") && csv.contains(",run-away\n"));
+    // Log axes and facets.
+    let out = d.join("log.png");
+    let (code, _, err) = cli(&[
+        s(&input),
+        "-o",
+        s(&out),
+        "--x",
+        "harmonics",
+        "--y",
+        "v_inf",
+        "--facet",
+        "level",
+        "--log-y",
+        "--dpi",
+        "100",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let png = std::fs::read(&out).unwrap();
+    // Two facets: the double-column preset, 175 mm at 100 dpi.
+    let width = u32::from_be_bytes(png[16..20].try_into().unwrap());
+    assert_eq!(width, (175.0_f64 / 25.4 * 100.0).round() as u32);
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Every bad argument is one line naming it, exit 1, and nothing is
+/// written (the directory holds only the input afterwards).
+#[test]
+fn bad_arguments_are_one_line_and_create_nothing() {
+    let d = dir("bad");
+    let input = d.join("grid.csv");
+    std::fs::write(&input, SWEEP_CSV).unwrap();
+    let out = d.join("f.svg");
+    let missing = d.join("no/such/dir/f.svg");
+    let over_input = d.join("grid.svg");
+    let scene = "examples/scenes/paper_default.toml";
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec![s(&input), "-o", s(&out), "--x", "harmonics", "--y", "nope"],
+            "--y nope: no such column",
+        ),
+        (
+            vec![s(&input), "-o", s(&out), "--x", "stroke", "--y", "v_inf"],
+            "--x stroke: no such column",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf",
+                "--series",
+                "sigmas",
+            ],
+            "--series sigmas",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf",
+                "--facet",
+                "n",
+            ],
+            "--facet n",
+        ),
+        (
+            vec![s(&input), "-o", s(&out), "--x", "level"],
+            "needs --x AXIS and --y INDICATOR",
+        ),
+        (
+            vec![s(&input), "-o", s(&missing), "--x", "level", "--y", "v_inf"],
+            "does not exist",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&over_input),
+                "--x",
+                "level",
+                "--y",
+                "v_inf",
+            ],
+            "refusing to overwrite an input",
+        ),
+        (
+            vec![s(&input), "-o", "f.jpg", "--x", "level", "--y", "v_inf"],
+            ".svg, .pdf or .png",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf",
+                "--font-size",
+                "6",
+            ],
+            "--font-size 6",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf",
+                "--dpi",
+                "0",
+            ],
+            "--dpi 0",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf",
+                "--width",
+                "5",
+            ],
+            "--width 5",
+        ),
+        (
+            vec![s(&input), "-o", s(&out), "--x", "sigma", "--y", "failure"],
+            "is not a number",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf",
+                "--log-x",
+                "--ref-x",
+                "-1",
+            ],
+            "--log-x",
+        ),
+        (
+            vec![scene, "-o", s(&out), "--x", "level"],
+            "--x: applies to a sweep output",
+        ),
+        (vec![scene, "-o", s(&out), "--periods", "0"], "--periods 0"),
+        (
+            vec![scene, "-o", s(&out), "--periods", "3-1"],
+            "runs backwards",
+        ),
+        (
+            vec!["no_such_scene.toml", "-o", s(&out)],
+            "no_such_scene.toml",
+        ),
+        (vec!["grid.jsonl", "-o", s(&out)], "sweep outputs as CSV"),
+    ];
+    for (args, expected) in cases {
+        let (code, _, err) = cli(&args);
+        assert_eq!(code, 1, "{args:?}: {err}");
+        assert!(
+            err.starts_with("stickslip: ") && err.lines().count() == 1,
+            "{args:?}: {err}"
+        );
+        assert!(err.contains(expected), "{args:?}: {err}");
+        assert_eq!(listing(&d), ["grid.csv"], "{args:?} created a file");
+    }
+    assert_eq!(
+        std::fs::read_to_string(&input).unwrap(),
+        SWEEP_CSV,
+        "input untouched"
+    );
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Issue 11: a regime column is optional, and a column that is empty in a
+/// row without failure or regime is drawn as "no value".
+#[test]
+fn a_sweep_without_regime_or_failure_columns_plots() {
+    let d = dir("plain");
+    let input = d.join("other_tool.csv");
+    std::fs::write(&input, "level,harmonics,v_inf\n3,2,0.03\n3,3,\n3,4,0.02\n").unwrap();
+    let out = d.join("p.svg");
+    let (code, _, err) = cli(&[s(&input), "-o", s(&out), "--x", "harmonics", "--y", "v_inf"]);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains(r#"data-label="no value (1, at the bottom)""#));
+    std::fs::remove_dir_all(&d).unwrap();
+}
