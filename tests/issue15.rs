@@ -6,10 +6,12 @@
 //! `run.verify_steady_state` agree with their start-up within the error
 //! estimates, or say why that cannot be judged.
 
+mod common;
+
+use common::mock::ThreeFixedPoints;
+
 use proptest::prelude::*;
-use stickslip::engine::{Direction, Mode, PeriodEngine, PeriodStart, WorkCounters};
 use stickslip::error::SimulationError;
-use stickslip::observer::{Observer, PeriodEnd};
 use stickslip::scene::Indicator;
 use stickslip::signal::SignalSpec;
 use stickslip::simulation::{self, Outcome};
@@ -89,77 +91,6 @@ fn issue15_barely_begun_start_up_is_not_converged() {
     ));
 }
 
-/// A period map with three fixed points, for the analysis with any engine:
-/// in units `x = v / a`, `g(x) = P(x) - x` is 0.2 (rising gently) up to
-/// `x = 0.5`, falls linearly to 0 at `x = 1`, is negative on `(1, 2)`,
-/// positive on `(2, 2.5)` and negative beyond: fixed points 1, 2 and 2.5.
-/// `P' = 1 + g' >= 0.59` everywhere, so `P` is monotone, as the event
-/// engine's map is. A search from rest is sent by Newton's step out of its
-/// bracket and bisects straight onto 2.5; the orbit from rest stops at 1.
-struct ThreeFixedPoints {
-    signal: Signal,
-    a: f64,
-    periods: u64,
-}
-
-impl ThreeFixedPoints {
-    fn g(&self, x: f64) -> (f64, f64) {
-        if x <= 0.5 {
-            (0.2 + 0.01 * x, 0.01)
-        } else if x <= 1.0 {
-            (0.41 * (1.0 - x), -0.41)
-        } else if x <= 2.0 {
-            (-0.2 * (x - 1.0) * (2.0 - x), -0.2 * (3.0 - 2.0 * x))
-        } else if x <= 2.5 {
-            (0.2 * (x - 2.0) * (2.5 - x), 0.2 * (4.5 - 2.0 * x))
-        } else {
-            (-0.3 * (x - 2.5), -0.3)
-        }
-    }
-}
-
-impl PeriodEngine for ThreeFixedPoints {
-    fn signal(&self) -> &Signal {
-        &self.signal
-    }
-
-    fn run_period<O: Observer>(
-        &mut self,
-        period: u64,
-        start: PeriodStart,
-        observer: &mut O,
-    ) -> Result<PeriodEnd, SimulationError> {
-        self.periods += 1;
-        let x = start.velocity / self.a;
-        let (g, dg) = self.g(x);
-        let end = PeriodEnd {
-            period,
-            // The slider keeps its start velocity through the period.
-            step: start.velocity * self.signal.period(),
-            velocity: (x + g) * self.a,
-            mode: Mode::Slip(Direction::Forward),
-            map_derivative: 1.0 + dg,
-        };
-        observer.period_end(&end);
-        Ok(end)
-    }
-
-    fn counters(&self) -> WorkCounters {
-        WorkCounters {
-            periods: self.periods,
-            ..WorkCounters::default()
-        }
-    }
-
-    fn zero_velocity_tolerance(&self) -> f64 {
-        0.0
-    }
-
-    fn last_velocity_uncertainty(&self) -> Option<f64> {
-        Some(0.0)
-    }
-}
-
 /// The module docs of `simulation` prove that the motion from rest reaches
 /// the fixed point nearest to rest in the direction `P(0) - 0` (here
 /// `x = 1`); the plain search from rest finds 2.5, and the run must not
@@ -174,6 +105,7 @@ fn the_fixed_point_used_is_the_one_the_motion_from_rest_reaches() {
     let signal = Signal::build(&scene.signal, &motor).unwrap();
     let a = signal.velocity_range().1 / 5.0;
     let engine = || ThreeFixedPoints {
+        close: false,
         signal: signal.clone(),
         a,
         periods: 0,

@@ -6,10 +6,11 @@
 //! one the motion from rest reaches. Signals are shared between scenes
 //! that differ only in the motor.
 
+mod common;
+
+use common::mock::ThreeFixedPoints;
+
 use std::sync::Arc;
-use stickslip::engine::{Direction, Mode, PeriodEngine, PeriodStart, WorkCounters};
-use stickslip::error::SimulationError;
-use stickslip::observer::{Observer, PeriodEnd};
 use stickslip::scene::Indicator;
 use stickslip::signal::SignalSpec;
 use stickslip::simulation::{self, Outcome, RunReport, SignalCache};
@@ -91,85 +92,6 @@ fn verify_steady_state_still_simulates_the_start_up() {
     assert_eq!(check.agrees(), Some(true));
     let startup = steady(&Scene::default()).startup_periods.unwrap();
     assert!(check.periods > startup, "{} periods", check.periods);
-}
-
-/// The map of tests/issue15.rs with three fixed points (in units of `a`:
-/// 1, 2 and 2.5; `g(x) = P(x) - x` is positive on `[0, 1)`, negative on
-/// `(1, 2)`, positive on `(2, 2.5)`): the search from rest lands on 2.5,
-/// the motion from rest stops at 1.
-struct ThreeFixedPoints {
-    signal: Signal,
-    a: f64,
-    periods: u64,
-    /// Fixed points at 1, 1.004 and 1.005 (a pair close to the far one)
-    /// instead of 1, 2 and 2.5.
-    close: bool,
-}
-
-impl ThreeFixedPoints {
-    fn g(&self, x: f64) -> (f64, f64) {
-        if self.close && x > 1.0 {
-            return if x <= 1.004 {
-                (-50.0 * (x - 1.0) * (1.004 - x), -50.0 * (2.004 - 2.0 * x))
-            } else if x <= 1.005 {
-                (50.0 * (x - 1.004) * (1.005 - x), 50.0 * (2.009 - 2.0 * x))
-            } else {
-                (-0.3 * (x - 1.005), -0.3)
-            };
-        }
-        if x <= 0.5 {
-            (0.2 + 0.01 * x, 0.01)
-        } else if x <= 1.0 {
-            (0.41 * (1.0 - x), -0.41)
-        } else if x <= 2.0 {
-            (-0.2 * (x - 1.0) * (2.0 - x), -0.2 * (3.0 - 2.0 * x))
-        } else if x <= 2.5 {
-            (0.2 * (x - 2.0) * (2.5 - x), 0.2 * (4.5 - 2.0 * x))
-        } else {
-            (-0.3 * (x - 2.5), -0.3)
-        }
-    }
-}
-
-impl PeriodEngine for ThreeFixedPoints {
-    fn signal(&self) -> &Signal {
-        &self.signal
-    }
-
-    fn run_period<O: Observer>(
-        &mut self,
-        period: u64,
-        start: PeriodStart,
-        observer: &mut O,
-    ) -> Result<PeriodEnd, SimulationError> {
-        self.periods += 1;
-        let x = start.velocity / self.a;
-        let (g, dg) = self.g(x);
-        let end = PeriodEnd {
-            period,
-            step: start.velocity * self.signal.period(),
-            velocity: (x + g) * self.a,
-            mode: Mode::Slip(Direction::Forward),
-            map_derivative: 1.0 + dg,
-        };
-        observer.period_end(&end);
-        Ok(end)
-    }
-
-    fn counters(&self) -> WorkCounters {
-        WorkCounters {
-            periods: self.periods,
-            ..WorkCounters::default()
-        }
-    }
-
-    fn zero_velocity_tolerance(&self) -> f64 {
-        0.0
-    }
-
-    fn last_velocity_uncertainty(&self) -> Option<f64> {
-        Some(0.0)
-    }
 }
 
 /// The march between rest and the searched fixed point (2.5) meets a point
