@@ -392,6 +392,29 @@ fn index(q: Quantity) -> usize {
     Quantity::ALL.iter().position(|x| *x == q).unwrap_or(0)
 }
 
+/// `column` has as many values as the `what` column `reference`.
+fn same_length(
+    file: &str,
+    column: &Column,
+    reference: &Column,
+    what: &str,
+) -> Result<(), CompareError> {
+    if column.values.len() == reference.values.len() {
+        return Ok(());
+    }
+    Err(CompareError::data(
+        file,
+        Some(&column.name),
+        None,
+        format!(
+            "{} values, but the {what} column {} has {}",
+            column.values.len(),
+            reference.name,
+            reference.values.len()
+        ),
+    ))
+}
+
 fn validate(
     data: &UserData,
     file: &str,
@@ -445,19 +468,7 @@ fn validate(
             ));
         }
         for c in samples.into_iter().flatten() {
-            if c.values.len() != t.values.len() {
-                return Err(CompareError::data(
-                    file,
-                    Some(&c.name),
-                    None,
-                    format!(
-                        "{} values, but the time column {} has {}",
-                        c.values.len(),
-                        t.name,
-                        t.values.len()
-                    ),
-                ));
-            }
+            same_length(file, c, t, "time")?;
         }
     } else if let Some(c) = samples.into_iter().flatten().next() {
         return Err(CompareError::data(
@@ -468,19 +479,7 @@ fn validate(
         ));
     }
     if let (Some(p), Some(v)) = (&data.p, &data.v_p) {
-        if p.values.len() != v.values.len() {
-            return Err(CompareError::data(
-                file,
-                Some(&v.name),
-                None,
-                format!(
-                    "{} values, but the period column {} has {}",
-                    v.values.len(),
-                    p.name,
-                    p.values.len()
-                ),
-            ));
-        }
+        same_length(file, v, p, "period")?;
         let mut last = 0.0;
         for (i, &q) in p.values.iter().enumerate() {
             if q.fract() != 0.0 || q < 1.0 || q <= last {
