@@ -16,7 +16,7 @@ use std::time::Instant;
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
 use stickslip::Motor;
-use stickslip::engine::trig_roots::TrigPoly;
+use stickslip::numerics::trig_roots::TrigPoly;
 use stickslip::signal::FourierSignal;
 use stickslip::signal::IdealShape;
 

@@ -9,9 +9,9 @@
 //! single period is bounded separately (the event engine's events per
 //! period, [`crate::scene::MAX_FIXED_STEPS_PER_PERIOD`]).
 
+use crate::engine::{Observer, PeriodEnd};
 use crate::engine::{PeriodEngine, PeriodStart, WorkCounters};
 use crate::error::SimulationError;
-use crate::observer::{Observer, PeriodEnd};
 use crate::signal::Signal;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};

@@ -31,9 +31,10 @@
 //! (for a slider that moves backwards, `v_p <= 0.99 v_inf`).
 
 use crate::engine::{Direction, EventCounts, Mode, PeriodEngine, PeriodStart, Segment};
+use crate::engine::{Observer, PeriodEnd};
 use crate::error::SimulationError;
 use crate::motor::Motor;
-use crate::observer::{Observer, PeriodEnd};
+use crate::numerics::CompensatedSum;
 use crate::signal::{Partition, Signal};
 
 /// What the per-period statistics should include beyond the step.
@@ -237,34 +238,6 @@ pub struct Transient {
     /// Set when the slider ran away: it slid a whole period without any
     /// event outside the rod's velocity range, moving further away.
     pub run_away: Option<Direction>,
-}
-
-/// Neumaier's compensated sum: the rounding error of every addition is
-/// carried along, so a sum of `N` steps is exact to a few ulps instead of
-/// `N` ulps.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct CompensatedSum {
-    sum: f64,
-    compensation: f64,
-}
-
-impl CompensatedSum {
-    /// Adds `x`.
-    #[inline]
-    pub fn add(&mut self, x: f64) {
-        let t = self.sum + x;
-        if self.sum.abs() >= x.abs() {
-            self.compensation += (self.sum - t) + x;
-        } else {
-            self.compensation += (x - t) + self.sum;
-        }
-        self.sum = t;
-    }
-
-    /// The sum.
-    pub fn value(&self) -> f64 {
-        self.sum + self.compensation
-    }
 }
 
 impl Transient {

@@ -28,6 +28,7 @@ pub mod export;
 pub mod indicators;
 pub mod interrupt;
 pub mod motor;
+pub mod numerics;
 pub mod observer;
 pub mod output;
 pub mod plot;

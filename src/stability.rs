@@ -19,8 +19,8 @@
 use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::{EventKind, Mode, PeriodEngine, PeriodStart};
 use crate::error::Error;
-use crate::indicators::CompensatedSum;
 use crate::motor::{Motor, MotorParams};
+use crate::numerics::CompensatedSum;
 use crate::observer::EventLog;
 use crate::scene::{Indicator, Scene};
 use crate::signal::{FourierSignal, Signal, SignalSpec};

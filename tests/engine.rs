@@ -201,7 +201,7 @@ fn a_million_periods_do_not_drift() {
         velocity: 0.0,
         mode: None,
     };
-    let mut total = stickslip::indicators::CompensatedSum::default();
+    let mut total = stickslip::numerics::CompensatedSum::default();
     for p in 1..=n {
         let end = engine.run_period(p, start, &mut ()).unwrap();
         total.add(end.step);

@@ -1,9 +1,9 @@
 //! `stickslip signal [SCENE]`: the rod signal exactly as simulated
-//! (see [`crate::export::SignalDescription`]), as text, JSON, or a MATLAB
+//! (see [`crate::signal::description::SignalDescription`]), as text, JSON, or a MATLAB
 //! or Python snippet that evaluates `x_R(t)`.
 
 use super::{Failure, Streams, write_out};
-use crate::export::SignalDescription;
+use crate::signal::description::SignalDescription;
 use crate::simulation;
 use clap::Args;
 use std::path::PathBuf;

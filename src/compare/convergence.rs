@@ -14,6 +14,7 @@
 //! up by its largest residual, so that every observed error lies on or
 //! below it: `h = exp((ln tol - ln C - r_max) / q)`.
 
+use crate::numerics::line_fit::fit_line;
 use serde::Serialize;
 
 /// Above this standard error the slope is not reported as an order.
@@ -71,15 +72,9 @@ pub fn fit(steps: &[f64], errors: &[f64], tolerance: f64) -> OrderFit {
     }
     let x: Vec<f64> = steps.iter().map(|h| h.ln()).collect();
     let y: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
-    let mx = x.iter().sum::<f64>() / m as f64;
-    let my = y.iter().sum::<f64>() / m as f64;
-    let sxx: f64 = x.iter().map(|v| (v - mx).powi(2)).sum();
-    let sxy: f64 = x.iter().zip(&y).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let q = sxy / sxx;
-    let c = my - q * mx;
-    let residuals: Vec<f64> = x.iter().zip(&y).map(|(a, b)| b - (c + q * a)).collect();
-    let s2 = residuals.iter().map(|r| r * r).sum::<f64>() / (m as f64 - 2.0);
-    let se = (s2 / sxx).sqrt();
+    let line = fit_line(&x, &y);
+    let (q, c, se) = (line.slope, line.intercept, line.standard_error);
+    let residuals = line.residuals;
     fit.order = Some(q);
     fit.standard_error = Some(se);
     let span = distinct[distinct.len() - 1] / distinct[0];

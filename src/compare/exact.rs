@@ -12,8 +12,8 @@
 use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::{Event, EventKind, Mode, PeriodEngine, PeriodStart, Segment};
 use crate::error::SimulationError;
-use crate::indicators::CompensatedSum;
 use crate::motor::Motor;
+use crate::numerics::CompensatedSum;
 use crate::observer::{EventLog, Trajectory};
 use crate::signal::Signal;
 

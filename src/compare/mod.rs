@@ -25,9 +25,9 @@ pub mod figure;
 pub mod read;
 pub mod rod;
 
-use crate::export::SignalDescription;
 use crate::scene::{EngineKind, Scene};
 use crate::signal::Signal;
+use crate::signal::description::SignalDescription;
 use crate::simulation;
 use read::{ReadOptions, UserData};
 use serde_json::{Value, json};

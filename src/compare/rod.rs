@@ -19,7 +19,7 @@
 //! * `not_harmonic`: the samples are not a series of the scene's
 //!   harmonics at its period (a different period or signal kind).
 
-use crate::export::SignalDescription;
+use crate::signal::description::SignalDescription;
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 use std::f64::consts::PI;

@@ -50,13 +50,13 @@
 //! relative to its position at the period start, so precision does not decay
 //! over long runs.
 
-use super::bracket;
 use super::{
     Direction, Event, EventKind, Kinematics, Mode, PeriodEngine, PeriodStart, Segment, WorkCounters,
 };
+use super::{Observer, PeriodEnd};
 use crate::error::SimulationError;
 use crate::motor::Motor;
-use crate::observer::{Observer, PeriodEnd};
+use crate::numerics::bracket;
 use crate::signal::{Partition, RodState, Signal};
 use std::cmp::Ordering;
 

@@ -119,9 +119,9 @@
 use super::{
     Direction, Event, EventKind, Kinematics, Mode, PeriodEngine, PeriodStart, Segment, WorkCounters,
 };
+use super::{Observer, PeriodEnd};
 use crate::error::SimulationError;
 use crate::motor::Motor;
-use crate::observer::{Observer, PeriodEnd};
 use crate::signal::{RodState, Signal};
 
 /// Settings of the fixed-step reference.

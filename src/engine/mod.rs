@@ -3,22 +3,21 @@
 //! * [`event`]: the exact event-driven engine. It finds every stick/slip
 //!   transition and every zero of the relative velocity by root finding on
 //!   the analytic signal and moves the slider in closed form between them.
-//! * [`trig_roots`]: all roots of a trigonometric polynomial in a period,
-//!   used once per signal to cut the period into monotone pieces.
-//! * [`bracket`]: a safeguarded Newton solver for one root in a bracket.
+//! * [`fixed_step`]: the fixed-step reference (first-order Moreau-Jean).
+//! * [`observer`]: what an engine hands its observers, and the period end
+//!   it reports.
 //!
 //! The shared vocabulary lives here: the slider's [`Mode`], typed
 //! [`Event`]s, the exact [`Segment`]s handed to observers, and the work
 //! counters every run returns.
 
 use crate::error::SimulationError;
-use crate::observer::{Observer, PeriodEnd};
 use crate::signal::Signal;
+pub use observer::{Observer, PeriodEnd};
 
-pub mod bracket;
 pub mod event;
 pub mod fixed_step;
-pub mod trig_roots;
+pub mod observer;
 
 /// Direction of sliding, seen from the slider: `Forward` while the rod is
 /// faster (`v_R > v_S`, friction pushes the slider forward).

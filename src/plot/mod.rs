@@ -183,20 +183,6 @@ impl PlotError {
     }
 }
 
-/// Least-squares slope of `ln y` against `ln x` (the exponent of a power
-/// law `y ∝ x^s`).
-pub(crate) fn loglog_slope(points: &[(f64, f64)]) -> f64 {
-    let n = points.len() as f64;
-    let (mx, my) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
-        (a + x.ln() / n, b + y.ln() / n)
-    });
-    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
-        let dx = x.ln() - mx;
-        (a + dx * (y.ln() - my), b + dx * dx)
-    });
-    sxy / sxx
-}
-
 /// `n` evenly spaced values from `a` to `b`, both included.
 pub(crate) fn linspace(a: f64, b: f64, n: usize) -> impl Iterator<Item = f64> {
     let step = (b - a) / (n - 1) as f64;
@@ -216,18 +202,4 @@ pub(crate) fn min_max(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
             (lo.min(v), hi.max(v))
         })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn slope_of_a_power_law() {
-        let pts: Vec<(f64, f64)> = [1e-9, 1e-6, 1e-3]
-            .iter()
-            .map(|x: &f64| (*x, 3.0 * x.sqrt()))
-            .collect();
-        assert!((loglog_slope(&pts) - 0.5).abs() < 1e-12);
-    }
 }

@@ -13,10 +13,10 @@
 //!   data in the legend.
 
 use super::{
-    Anchor, Axis, Cell, Csv, Figure, Look, Marker, Panel, Plot, PlotError, Preset, Series,
-    loglog_slope, min_max,
+    Anchor, Axis, Cell, Csv, Figure, Look, Marker, Panel, Plot, PlotError, Preset, Series, min_max,
 };
 use crate::motor::Motor;
+use crate::numerics::line_fit::loglog_slope;
 use crate::scene::Scene;
 use crate::signal::SignalSpec;
 use crate::simulation;

@@ -20,9 +20,9 @@ use super::{
     Axis, Cell, Csv, Dash, Figure, Kind, Look, Marker, Panel, Plot, PlotError, Preset, Series,
     min_max, padded,
 };
+use crate::engine::Observer;
 use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::{Direction, EventKind, Mode, PeriodEngine, PeriodStart, Segment};
-use crate::observer::Observer;
 use crate::scene::Scene;
 use crate::signal::{Signal, SignalSpec};
 use crate::simulation;

@@ -18,10 +18,10 @@
 
 use super::IdealShape;
 use super::RodState;
-use crate::engine::bracket;
-use crate::engine::trig_roots::TrigPoly;
 use crate::error::{Num, ParamError};
 use crate::motor::Motor;
+use crate::numerics::bracket;
+use crate::numerics::trig_roots::TrigPoly;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 

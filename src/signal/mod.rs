@@ -18,6 +18,7 @@
 //! where in a period `a_R(tau) - c` changes sign ([`Signal::partition`]), and
 //! where the rod jumps ([`Signal::jump_phase`]).
 
+pub mod description;
 pub mod fourier;
 pub mod harmonics;
 pub mod ideal;

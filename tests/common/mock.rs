@@ -3,8 +3,8 @@
 
 use stickslip::Signal;
 use stickslip::engine::{Direction, Mode, PeriodEngine, PeriodStart, WorkCounters};
+use stickslip::engine::{Observer, PeriodEnd};
 use stickslip::error::SimulationError;
-use stickslip::observer::{Observer, PeriodEnd};
 
 /// A period map with three fixed points, for the analysis with any engine:
 /// in units `x = v / a`, `g(x) = P(x) - x` is 0.2 (rising gently) up to
