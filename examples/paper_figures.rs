@@ -12,9 +12,9 @@
 use clap::Parser;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use stickslip::SignalSpec;
 use stickslip::plot::performance::GridPoint;
 use stickslip::plot::{self, Figure, Preset};
-use stickslip::signal::SignalSpec;
 use stickslip::sweep::{self, Axis};
 use stickslip::{Motor, Scene};
 

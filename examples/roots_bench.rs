@@ -15,10 +15,10 @@ use std::time::Instant;
 
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
+use stickslip::FourierSignal;
+use stickslip::IdealShape;
 use stickslip::Motor;
-use stickslip::numerics::trig_roots::TrigPoly;
-use stickslip::signal::FourierSignal;
-use stickslip::signal::IdealShape;
+use stickslip::numerics::TrigPoly;
 
 fn median(mut xs: Vec<f64>) -> f64 {
     xs.sort_by(f64::total_cmp);

@@ -5,14 +5,16 @@
 //! `cargo run --release --example stability_report`
 
 use std::time::Instant;
-use stickslip::stability::{catalogue, period_cost, run_case};
-use stickslip::{Scene, simulation};
+use stickslip::Scene;
+#[path = "../tests/support/stability.rs"]
+mod stability;
+use stability::{catalogue, period_cost, run_case};
 
 fn main() {
     // Engine cost per steady-state period of the default scene, median of
     // 21 measurements of 2000 periods each.
-    let r = simulation::run(&Scene::default()).expect("default scene runs");
-    let (signal, motor) = simulation::build(&Scene::default()).expect("valid");
+    let r = stickslip::run(&Scene::default()).expect("default scene runs");
+    let (signal, motor) = stickslip::build(&Scene::default()).expect("valid");
     let mut costs: Vec<f64> = (0..21)
         .filter_map(|_| period_cost(&signal, &motor, r.steady.boundary_velocity))
         .collect();

@@ -7,12 +7,12 @@
 //! `cargo run --release --example throughput`
 
 use std::time::Instant;
-use stickslip::engine::PeriodEngine;
-use stickslip::engine::PeriodStart;
-use stickslip::engine::event::{EventEngine, EventOptions};
-use stickslip::scene::Indicator;
-use stickslip::signal::SignalSpec;
-use stickslip::{Motor, Scene, Signal, simulation};
+use stickslip::Indicator;
+use stickslip::PeriodEngine;
+use stickslip::PeriodStart;
+use stickslip::SignalSpec;
+use stickslip::{EventEngine, EventOptions};
+use stickslip::{Motor, Scene, Signal};
 
 fn median(mut xs: Vec<f64>) -> f64 {
     xs.sort_by(f64::total_cmp);
@@ -41,11 +41,11 @@ fn event_rate(signal: &Signal, motor: &Motor, periods: u64) -> (f64, u64) {
 
 /// Medians of set-up, simulation and whole-run time (us) of `scene`, with
 /// the report of the last run.
-fn timed(scene: &Scene, runs: usize) -> (f64, f64, f64, simulation::RunReport) {
+fn timed(scene: &Scene, runs: usize) -> (f64, f64, f64, stickslip::RunReport) {
     let (mut setup, mut sim, mut wall) = (Vec::new(), Vec::new(), Vec::new());
     let mut last = None;
     for _ in 0..runs {
-        let r = simulation::run(scene).expect("scene runs");
+        let r = stickslip::run(scene).expect("scene runs");
         setup.push(r.setup_time.as_secs_f64() * 1e6);
         sim.push(r.simulation_time.as_secs_f64() * 1e6);
         wall.push(r.wall_time.as_secs_f64() * 1e6);
@@ -98,7 +98,7 @@ fn main() {
     let mut events = 0;
     for _ in 0..runs {
         let clock = Instant::now();
-        let r = simulation::run(&scene).expect("default scene runs");
+        let r = stickslip::run(&scene).expect("default scene runs");
         walls.push(clock.elapsed().as_secs_f64() * 1e6);
         internal.push(r.wall_time.as_secs_f64() * 1e6);
         events = r.work.events.total();

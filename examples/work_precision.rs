@@ -35,12 +35,12 @@
 
 use std::fmt::Write as _;
 use std::time::Instant;
-use stickslip::engine::PeriodEngine;
-use stickslip::engine::event::{EventEngine, EventOptions};
-use stickslip::engine::fixed_step::{FixedStepEngine, FixedStepOptions};
+use stickslip::PeriodEngine;
+use stickslip::RunReport;
+use stickslip::SignalSpec;
 use stickslip::plot::{Anchor, Axis, Figure, Kind, Look, Marker, Panel, Plot, Preset, Series};
-use stickslip::signal::SignalSpec;
-use stickslip::simulation::{self, RunReport};
+use stickslip::{EventEngine, EventOptions};
+use stickslip::{FixedStepEngine, FixedStepOptions};
 use stickslip::{Motor, Scene, Signal};
 
 /// Steps per period of the highest harmonic for the reference.
@@ -136,7 +136,7 @@ fn run_once(
         scene: &Scene,
         motor: &Motor,
     ) -> Result<RunReport, stickslip::Error> {
-        simulation::run_with(e, scene, motor)
+        stickslip::run_with(e, scene, motor)
     }
     let clock = Instant::now();
     let report = match engine {
@@ -189,7 +189,7 @@ fn main() {
     let mut points = Vec::new();
     let mut summary = String::new();
     for (ci, case) in cases.iter().enumerate() {
-        let (signal, motor) = simulation::build(&case.scene).expect("valid scene");
+        let (signal, motor) = stickslip::build(&case.scene).expect("valid scene");
         let (exact, wall, runs) = measure(&signal, &motor, &case.scene, Engine::Event(None))
             .expect("the event engine runs");
         let v_exact = exact.indicators.v_inf;

@@ -25,16 +25,16 @@ use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::fixed_step::{FixedStepEngine, FixedStepOptions};
 use crate::engine::{EventCounts, PeriodEngine};
 use crate::error::{Error, ParamError};
+use crate::indicator::Indicator;
 use crate::motor::Motor;
-use crate::report;
-use crate::scene::{Indicator, Scene};
+use crate::scene::Scene;
 use crate::simulation::{self, RunReport};
 use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
 /// The resolutions `stickslip check` uses when none are given (steps per
 /// period of the highest harmonic; the paper used 5000).
-pub const DEFAULT_STEPS: [u32; 4] = [50, 500, 5000, 50000];
+pub(crate) const DEFAULT_STEPS: [u32; 4] = [50, 500, 5000, 50000];
 
 /// One run of the scene.
 #[derive(Debug, Clone)]
@@ -95,7 +95,12 @@ pub struct CheckReport {
 
 /// The observed order between two differences at step counts `s_coarse`
 /// and `s_fine`; `None` if a difference is zero or not finite.
-pub fn observed_order(d_coarse: f64, d_fine: f64, s_coarse: f64, s_fine: f64) -> Option<f64> {
+pub(crate) fn observed_order(
+    d_coarse: f64,
+    d_fine: f64,
+    s_coarse: f64,
+    s_fine: f64,
+) -> Option<f64> {
     let (a, b) = (d_coarse.abs(), d_fine.abs());
     let usable = |x: f64| x.is_finite() && x > 0.0;
     (usable(a) && usable(b) && s_fine != s_coarse).then(|| (a / b).ln() / (s_fine / s_coarse).ln())
@@ -103,7 +108,7 @@ pub fn observed_order(d_coarse: f64, d_fine: f64, s_coarse: f64, s_fine: f64) ->
 
 /// The least-squares slope of `-log |d|` against `log s` over the pairs
 /// `(s, d)` with a finite non-zero `d`; `None` with fewer than three.
-pub fn fitted_order(points: &[(f64, f64)]) -> Option<f64> {
+pub(crate) fn fitted_order(points: &[(f64, f64)]) -> Option<f64> {
     let xy: Vec<(f64, f64)> = points
         .iter()
         .filter(|(s, d)| d.is_finite() && *d != 0.0 && *s > 0.0)
@@ -122,7 +127,7 @@ pub fn fitted_order(points: &[(f64, f64)]) -> Option<f64> {
 
 /// Checks a list of resolutions: not empty, every value at least 1.
 /// Returns them sorted from coarse to fine, without repeats.
-pub fn validate_steps(steps: &[u32]) -> Result<Vec<u32>, ParamError> {
+pub(crate) fn validate_steps(steps: &[u32]) -> Result<Vec<u32>, ParamError> {
     if steps.is_empty() {
         return Err(ParamError::Inconsistent {
             field: "steps".to_owned(),
@@ -204,17 +209,17 @@ pub fn check(scene: &Scene, steps: &[u32]) -> Result<CheckReport, Error> {
 
 /// `(name, unit, value, error estimate)` of every requested indicator,
 /// with the definitions and units of `stickslip run`
-/// ([`RunReport::indicator`], [`report::unit`]); `stiction_fraction` is
+/// ([`RunReport::value`], [`Indicator::printed_unit`]); `stiction_fraction` is
 /// followed by `stiction_fraction_steady`, the steady period's.
 fn indicator_values(r: &RunReport) -> Vec<(&'static str, &'static str, f64, Option<f64>)> {
     let mut out = Vec::new();
     for indicator in &r.requested {
-        if let Some(value) = r.indicator(*indicator) {
+        if let Some(value) = r.value(*indicator) {
             out.push((
                 indicator.name(),
-                report::unit(*indicator),
+                indicator.printed_unit(),
                 value,
-                r.indicator_error(*indicator),
+                r.error(*indicator),
             ));
         }
         if *indicator == Indicator::StictionFraction {
@@ -369,5 +374,21 @@ impl CheckReport {
             }
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_trend_of_an_exact_first_order_sequence_is_one() {
+        // Differences 1e-2, -5e-3, 2.5e-3 to a limit: halving each time the
+        // step doubles (first order); a zero difference carries no order.
+        let order = fitted_order(&[(10.0, 1e-2), (20.0, -5e-3), (40.0, 2.5e-3), (80.0, 0.0)]);
+        assert!((order.expect("three usable points") - 1.0).abs() < 1e-12);
+        assert!(fitted_order(&[(10.0, 1e-2), (20.0, 0.0), (40.0, 2.5e-3)]).is_none());
+        assert!(validate_steps(&[]).is_err());
+        assert!(validate_steps(&[50, 0]).is_err());
     }
 }

@@ -18,7 +18,7 @@ const MAX_SAMPLES: u64 = 2_000_000;
 
 /// Output format of a table, from the file name: `.jsonl`/`.json` gives
 /// JSON lines, anything else CSV.
-pub fn is_json_lines(path: &std::path::Path) -> bool {
+pub(crate) fn is_json_lines(path: &std::path::Path) -> bool {
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("jsonl") || e.eq_ignore_ascii_case("json"))
 }
@@ -49,10 +49,10 @@ fn table(columns: &[&str], rows: Vec<Vec<Value>>, json_lines: bool) -> String {
 }
 
 /// Columns of the trajectory table.
-pub const TRAJECTORY_COLUMNS: [&str; 7] = ["t", "x_R", "v_R", "a_R", "x_S", "v_S", "mode"];
+pub(crate) const TRAJECTORY_COLUMNS: [&str; 7] = ["t", "x_R", "v_R", "a_R", "x_S", "v_S", "mode"];
 
 /// The exact states as a CSV or JSON-lines table.
-pub fn trajectory_table(states: &[ExactState], json_lines: bool) -> String {
+pub(crate) fn trajectory_table(states: &[ExactState], json_lines: bool) -> String {
     let rows = states
         .iter()
         .map(|s| {
@@ -71,7 +71,7 @@ pub fn trajectory_table(states: &[ExactState], json_lines: bool) -> String {
 }
 
 /// Columns of the per-period table.
-pub const PERIOD_COLUMNS: [&str; 7] = [
+pub(crate) const PERIOD_COLUMNS: [&str; 7] = [
     "p",
     "v_p",
     "x_p",
@@ -83,7 +83,7 @@ pub const PERIOD_COLUMNS: [&str; 7] = [
 
 /// The per-period series as a CSV or JSON-lines table: `events` counts the
 /// period's events, `event_kinds` lists their kinds separated by `;`.
-pub fn periods_table(periods: &[PeriodRecord], json_lines: bool) -> String {
+pub(crate) fn periods_table(periods: &[PeriodRecord], json_lines: bool) -> String {
     let rows = periods
         .iter()
         .map(|r| {
@@ -104,7 +104,7 @@ pub fn periods_table(periods: &[PeriodRecord], json_lines: bool) -> String {
 
 /// What `run --trajectory` / `--periods-series` asks for.
 #[derive(Debug, Clone, Default)]
-pub struct TrajectoryRequest {
+pub(crate) struct TrajectoryRequest {
     /// Write the states here.
     pub trajectory: Option<std::path::PathBuf>,
     /// Sample times (s), one a line or a CSV column `t`.
@@ -119,14 +119,17 @@ pub struct TrajectoryRequest {
 
 impl TrajectoryRequest {
     /// True if anything is asked for.
-    pub fn any(&self) -> bool {
+    pub(crate) fn any(&self) -> bool {
         self.trajectory.is_some() || self.periods_series.is_some()
     }
 }
 
 /// Writes what `request` asks for, for `scene`; the per-period series
 /// covers the start-up to `p_0.99` (or the last sampled period, if later).
-pub fn write_requested(scene: &crate::Scene, request: &TrajectoryRequest) -> Result<(), String> {
+pub(crate) fn write_requested(
+    scene: &crate::scene::Scene,
+    request: &TrajectoryRequest,
+) -> Result<(), String> {
     use crate::compare::exact;
     let (signal, motor) = crate::simulation::build(scene).map_err(|e| e.to_string())?;
     let period = signal.period();
@@ -186,7 +189,7 @@ pub fn write_requested(scene: &crate::Scene, request: &TrajectoryRequest) -> Res
         let mut exact_scene = scene.clone();
         exact_scene.run.engine = crate::scene::EngineKind::Event;
         // p_0.99 needs the start-up, which a run simulates only when asked.
-        let startup = crate::scene::Indicator::StartupTime;
+        let startup = crate::indicator::Indicator::StartupTime;
         if !exact_scene.outputs.indicators.contains(&startup) {
             exact_scene.outputs.indicators.push(startup);
         }

@@ -42,7 +42,7 @@ fn files() -> MutexGuard<'static, BTreeSet<PathBuf>> {
 }
 
 /// Starts handling SIGINT and SIGTERM (see the module docs). Idempotent.
-pub fn install() -> std::io::Result<()> {
+pub(crate) fn install() -> std::io::Result<()> {
     use signal_hook::consts::{SIGINT, SIGTERM};
     if INSTALLED.get().is_some() {
         return Ok(());
@@ -71,7 +71,7 @@ pub fn install() -> std::io::Result<()> {
 
 /// The signal that asked the program to stop (`SIGINT` = 2, `SIGTERM` =
 /// 15), if any.
-pub fn requested() -> Option<i32> {
+pub(crate) fn requested() -> Option<i32> {
     match SIGNAL.load(Ordering::SeqCst) {
         0 => None,
         signal => Some(signal),
@@ -79,17 +79,17 @@ pub fn requested() -> Option<i32> {
 }
 
 /// The exit status after `signal`: `128 + signal`.
-pub fn exit_status(signal: i32) -> u8 {
+pub(crate) fn exit_status(signal: i32) -> u8 {
     u8::try_from(128 + signal).unwrap_or(u8::MAX)
 }
 
 /// Postpones the exit on the first signal while it lives (see the module
 /// docs).
 #[must_use = "the deferral ends when it is dropped"]
-pub struct Deferral(());
+pub(crate) struct Deferral(());
 
 /// Starts a [`Deferral`].
-pub fn defer() -> Deferral {
+pub(crate) fn defer() -> Deferral {
     DEFERRALS.fetch_add(1, Ordering::SeqCst);
     Deferral(())
 }
@@ -101,13 +101,13 @@ impl Drop for Deferral {
 }
 
 /// Marks `path` for deletion if a signal ends the process.
-pub fn register(path: &Path) {
+pub(crate) fn register(path: &Path) {
     files().insert(path.to_owned());
 }
 
 /// Creates (truncating) `path` and marks it for deletion if a signal ends
 /// the process, as one step with respect to the clean-up.
-pub fn create_registered(path: &Path) -> std::io::Result<File> {
+pub(crate) fn create_registered(path: &Path) -> std::io::Result<File> {
     let mut registered = files();
     let file = File::create(path)?;
     registered.insert(path.to_owned());
@@ -115,7 +115,7 @@ pub fn create_registered(path: &Path) -> std::io::Result<File> {
 }
 
 /// Forgets `path` (it was renamed, deleted, or is complete).
-pub fn unregister(path: &Path) {
+pub(crate) fn unregister(path: &Path) {
     files().remove(path);
 }
 

@@ -16,7 +16,7 @@ fn temporary(path: &Path) -> PathBuf {
 }
 
 /// Writes `bytes` to `path` atomically.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let temp = temporary(path);
     let result = crate::interrupt::create_registered(&temp)
         .and_then(|mut file| file.write_all(bytes))

@@ -8,7 +8,7 @@
 //! every parameter is bit-identical. It is printed as its first 16
 //! hexadecimal digits (64 bits).
 
-use crate::Scene;
+use crate::scene::Scene;
 use sha2::{Digest, Sha256};
 
 /// The program version, `CARGO_PKG_VERSION`.

@@ -9,30 +9,18 @@
 //! NaN. Every output carries `regime`, the program version and the resolved
 //! scene with its fingerprint ([`crate::provenance`]).
 //!
-//! Every indicator has one definition and one unit ([`RunReport::indicator`],
-//! [`unit()`]), the same in `run`, `check`, sweeps and figures.
+//! Every indicator has one definition and one unit ([`RunReport::value`],
+//! [`Indicator`]), the same in `run`, `check`, sweeps and figures.
 
-use crate::Scene;
 use crate::engine::{Direction, EventCounts};
+use crate::indicator::Indicator;
 use crate::provenance;
-use crate::scene::{Indicator, SceneFile};
+use crate::scene::Scene;
+use crate::scene::SceneFile;
 use crate::simulation::{Outcome, RunReport, Unsettled};
 use serde_json::{Map, Value, json};
 use std::fmt::Write as _;
 use std::time::Duration;
-
-/// The SI unit of an indicator, as printed: `friction_energy` is energy
-/// per steady-state period.
-pub fn unit(indicator: Indicator) -> &'static str {
-    match indicator {
-        Indicator::VInf => "m/s",
-        Indicator::StartupTime => "s",
-        Indicator::Smoothness | Indicator::StictionFraction => "1",
-        Indicator::Durability => "1/N",
-        Indicator::FrictionEnergy => "J (per period)",
-        Indicator::VelocityPerPower => "m/(s VA)",
-    }
-}
 
 /// `value` rounded to the digits its absolute error `err` supports (15
 /// significant digits without an estimate), then `± err`; an error of 0
@@ -202,14 +190,8 @@ fn steady_json(m: &mut Map<String, Value>, r: &RunReport) {
             }
             _ => {}
         }
-        m.insert(
-            indicator.name().into(),
-            option_number(r.indicator(*indicator)),
-        );
-        err.insert(
-            indicator.name().into(),
-            option_number(r.indicator_error(*indicator)),
-        );
+        m.insert(indicator.name().into(), option_number(r.value(*indicator)));
+        err.insert(indicator.name().into(), option_number(r.error(*indicator)));
     }
     if let Some(check) = &r.steady_state_check {
         // The cross-check of run.verify_steady_state: the start-up's own
@@ -394,8 +376,7 @@ fn steady_text(r: &RunReport) -> String {
     signal_line(&mut out, r.period, r.f_max);
     let _ = writeln!(out, "steady state: {}", r.regime().name());
     let _ = writeln!(out, "indicators (± estimated absolute error):");
-    let shown =
-        |i: Indicator| with_estimate(r.indicator(i).unwrap_or(f64::NAN), r.indicator_error(i));
+    let shown = |i: Indicator| with_estimate(r.value(i).unwrap_or(f64::NAN), r.error(i));
     for indicator in &r.requested {
         let name = indicator.name();
         match indicator {
@@ -435,10 +416,10 @@ fn steady_text(r: &RunReport) -> String {
                         "VA",
                     );
                 }
-                line(&mut out, name, shown(*indicator), unit(*indicator));
+                line(&mut out, name, shown(*indicator), indicator.printed_unit());
             }
             Indicator::Smoothness => line(&mut out, name, shown(*indicator), ""),
-            _ => line(&mut out, name, shown(*indicator), unit(*indicator)),
+            _ => line(&mut out, name, shown(*indicator), indicator.printed_unit()),
         }
     }
     if let Some(check) = &r.steady_state_check {

@@ -4,10 +4,10 @@
 mod common;
 
 use common::*;
-use stickslip::engine::event::{EventEngine, EventOptions};
-use stickslip::engine::{Direction, EventKind, Mode, PeriodEngine, PeriodStart};
-use stickslip::observer::EventLog;
-use stickslip::signal::{FourierSignal, SignalSpec};
+use stickslip::EventLog;
+use stickslip::{Direction, EventKind, Mode, PeriodEngine, PeriodStart};
+use stickslip::{EventEngine, EventOptions};
+use stickslip::{FourierSignal, SignalSpec};
 use stickslip::{Motor, MotorParams, Signal};
 
 /// A single harmonic `x_R = (s/2)(1 - cos w t)`: `v_R = V sin w t` with
@@ -193,7 +193,7 @@ fn discrete_ideal_signal_events_per_period() {
 fn a_million_periods_do_not_drift() {
     let motor = paper_motor();
     let mut scene = scene_with(ideal(0.5, 1.0));
-    scene.outputs.indicators = vec![stickslip::scene::Indicator::VInf];
+    scene.outputs.indicators = vec![stickslip::Indicator::VInf];
     let signal = Signal::build(&scene.signal, &motor).unwrap();
     let mut engine = EventEngine::new(&signal, &motor, EventOptions::default());
     let n = 1_000_000u64;
@@ -244,7 +244,7 @@ fn harmonics_spec_reproduces_a_fourier_signal() {
 /// stiction fraction is 0.25, section7_grid.csv).
 #[test]
 fn steady_state_regimes() {
-    use stickslip::simulation::Regime;
+    use stickslip::Regime;
     let cases = [
         (fourier(25e-6, 1e-4, 5, true), Regime::Stuck),
         (fourier(25e-6, 36.0, 2, true), Regime::SlipSlip),

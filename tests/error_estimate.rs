@@ -5,17 +5,17 @@
 mod common;
 
 use common::*;
-use stickslip::engine::event::{EventEngine, EventOptions};
-use stickslip::simulation::{self, RunReport};
+use stickslip::RunReport;
+use stickslip::{EventEngine, EventOptions};
 use stickslip::{Motor, Scene};
 
 fn run_with_tolerance(scene: &Scene, time_tolerance: f64) -> RunReport {
-    let (signal, motor) = simulation::build(scene).unwrap();
+    let (signal, motor) = stickslip::build(scene).unwrap();
     let options = EventOptions {
         time_tolerance,
         ..EventOptions::default()
     };
-    simulation::run_with(EventEngine::new(&signal, &motor, options), scene, &motor).unwrap()
+    stickslip::run_with(EventEngine::new(&signal, &motor, options), scene, &motor).unwrap()
 }
 
 /// Closed forms of docs/model.md section 7 (and the discrete step of

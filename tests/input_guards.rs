@@ -5,13 +5,10 @@
 
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
-use stickslip::error::{Error, Num, ParamError, SceneError, SimulationError};
-use stickslip::observer::MAX_LOGGED_EVENTS;
-use stickslip::scene::{
-    EngineKind, MAX_FIXED_STEPS_PER_PERIOD, MAX_INPUT_BYTES, Scene, read_input,
-};
-use stickslip::signal::SignalSpec;
-use stickslip::simulation;
+use stickslip::MAX_LOGGED_EVENTS;
+use stickslip::SignalSpec;
+use stickslip::{EngineKind, MAX_FIXED_STEPS_PER_PERIOD, MAX_INPUT_BYTES, Scene, read_input};
+use stickslip::{Error, Num, ParamError, SceneError, SimulationError};
 
 fn parse(text: &str) -> Result<Scene, SceneError> {
     Scene::from_toml_str(text, "<string>")
@@ -143,7 +140,7 @@ fn time_limit_8_9_stops_the_slow_scene_and_names_the_period() {
     let mut scene = parse(SLOW_SCENE).unwrap();
     scene.run.time_limit_s = Some(0.5);
     let clock = Instant::now();
-    let result = simulation::run(&scene);
+    let result = stickslip::run(&scene);
     let elapsed = clock.elapsed();
     match result {
         Err(Error::Simulation(SimulationError::TimeLimit { seconds, period })) => {
@@ -197,7 +194,7 @@ events = true
 "#,
     )
     .unwrap();
-    let report = simulation::run(&scene).unwrap();
+    let report = stickslip::run(&scene).unwrap();
     let log = report.event_log.as_ref().unwrap();
     assert_eq!(log.len(), MAX_LOGGED_EVENTS);
     let total = report.events().total();
@@ -205,7 +202,7 @@ events = true
     assert_eq!(log.len() as u64 + report.event_log_omitted, total);
     // A short log is complete.
     scene.run.max_periods = 100;
-    let report = simulation::run(&scene).unwrap();
+    let report = stickslip::run(&scene).unwrap();
     assert_eq!(report.event_log_omitted, 0);
     assert_eq!(
         report.event_log.as_ref().unwrap().len() as u64,
@@ -257,7 +254,7 @@ fn messages_8_10_numbers_print_in_scientific_notation() {
     // T = sqrt(2 x_Rmax / a_R) overflows. The message once printed a_R
     // with 318 zeros.
     let scene = parse("[signal]\nkind = \"ideal\"\nstroke = 25e-6\nkappa = 1e-320\n").unwrap();
-    let e = simulation::build(&scene).unwrap_err().to_string();
+    let e = stickslip::build(&scene).unwrap_err().to_string();
     assert!(e.contains("e-318 m/s^2 gives the period T = inf s"), "{e}");
     assert!(!e.contains("00000000"), "{e}");
 }

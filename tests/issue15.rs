@@ -11,11 +11,11 @@ mod common;
 use common::mock::ThreeFixedPoints;
 
 use proptest::prelude::*;
-use stickslip::error::SimulationError;
-use stickslip::scene::Indicator;
-use stickslip::signal::SignalSpec;
-use stickslip::simulation::{self, Outcome};
-use stickslip::{Motor, MotorParams, Scene, Signal, indicators};
+use stickslip::Indicator;
+use stickslip::Outcome;
+use stickslip::SignalSpec;
+use stickslip::SimulationError;
+use stickslip::{Motor, MotorParams, Scene, Signal};
 
 fn reproducer(name: &str) -> Scene {
     let path = format!("{}/tests/data/issue15/{name}", env!("CARGO_MANIFEST_DIR"));
@@ -41,7 +41,7 @@ fn issue15_neutral_map_gives_the_motion_from_rest() {
     for name in ["neutral_map_extreme.toml", "neutral_map_moderate.toml"] {
         let scene = reproducer(name);
         let limit = reachable(&scene, scene.run.max_periods);
-        match simulation::simulate(&scene).unwrap() {
+        match stickslip::simulate(&scene).unwrap() {
             Outcome::Steady(r) => {
                 // The motion from rest, within its error estimate.
                 let e = r.error.v_inf.expect("an estimate");
@@ -73,7 +73,7 @@ fn issue15_neutral_map_gives_the_motion_from_rest() {
 fn issue15_barely_begun_start_up_is_not_converged() {
     let scene = reproducer("tiny_friction_fast_rod.toml");
     let limit = reachable(&scene, scene.run.max_periods);
-    let outcome = simulation::simulate(&scene).unwrap();
+    let outcome = stickslip::simulate(&scene).unwrap();
     assert_eq!(outcome.regime(), "not_converged");
     let u = outcome.unsettled().unwrap();
     assert_eq!(u.periods_simulated, 110_008);
@@ -110,7 +110,7 @@ fn the_fixed_point_used_is_the_one_the_motion_from_rest_reaches() {
         a,
         periods: 0,
     };
-    let (v, ..) = indicators::fixed_point(&mut engine(), 0.0).unwrap();
+    let (v, ..) = stickslip::analysis::fixed_point(&mut engine(), 0.0).unwrap();
     assert!(
         (v / a - 2.5).abs() < 1e-12,
         "the search alone lands on {}",
@@ -120,7 +120,7 @@ fn the_fixed_point_used_is_the_one_the_motion_from_rest_reaches() {
     only_v.outputs.indicators = vec![Indicator::VInf, Indicator::StartupTime];
     for verify in [false, true] {
         only_v.run.verify_steady_state = verify;
-        let r = simulation::run_with(engine(), &only_v, &motor).unwrap();
+        let r = stickslip::run_with(engine(), &only_v, &motor).unwrap();
         // v_p = boundary velocity in this map: v_inf = a.
         assert!(
             (r.indicators.v_inf / a - 1.0).abs() < 1e-9,
@@ -191,7 +191,7 @@ proptest! {
     /// not converged); never a silent disagreement.
     #[test]
     fn fixed_point_and_start_up_agree_or_the_run_says_why(scene in scene()) {
-        match simulation::simulate(&scene).unwrap() {
+        match stickslip::simulate(&scene).unwrap() {
             Outcome::Steady(r) => {
                 let check = r.steady_state_check.expect("asked for");
                 prop_assert_ne!(check.agrees(), Some(false),

@@ -11,10 +11,10 @@ mod common;
 use common::mock::ThreeFixedPoints;
 
 use std::sync::Arc;
-use stickslip::scene::Indicator;
-use stickslip::signal::SignalSpec;
-use stickslip::simulation::{self, Outcome, RunReport, SignalCache};
+use stickslip::Indicator;
+use stickslip::SignalSpec;
 use stickslip::{Motor, Scene, Signal};
+use stickslip::{Outcome, RunReport, SignalCache};
 
 fn only_v_inf(scene: &Scene) -> Scene {
     let mut s = scene.clone();
@@ -23,7 +23,7 @@ fn only_v_inf(scene: &Scene) -> Scene {
 }
 
 fn steady(scene: &Scene) -> RunReport {
-    simulation::run(scene).expect("a steady state")
+    stickslip::run(scene).expect("a steady state")
 }
 
 /// The default scene (the paper's section 7) and scenes of other signals
@@ -112,7 +112,7 @@ fn v_inf_only_run_of_a_three_fixed_point_map_takes_the_nearest() {
         periods: 0,
         close: false,
     };
-    let r = simulation::run_with(engine, &scene, &motor).unwrap();
+    let r = stickslip::run_with(engine, &scene, &motor).unwrap();
     assert!(
         (r.indicators.v_inf / a - 1.0).abs() < 1e-9,
         "{}",
@@ -142,7 +142,7 @@ fn a_pair_of_fixed_points_close_to_the_found_one_is_seen() {
             periods: 0,
             close: true,
         };
-        let r = simulation::run_with(engine, &scene, &motor).unwrap();
+        let r = stickslip::run_with(engine, &scene, &motor).unwrap();
         assert!(
             (r.indicators.v_inf / a - 1.0).abs() < 1e-9,
             "{indicators:?}: {}",
@@ -174,7 +174,7 @@ fn signal_cache_shares_the_signal_between_motors() {
             own.indicators.v_inf.to_bits()
         );
         let signal = cache.get(scene).unwrap();
-        let with = simulation::simulate_with_signal(scene, &signal).unwrap();
+        let with = stickslip::simulate_with_signal(scene, &signal).unwrap();
         let Outcome::Steady(with) = with else {
             panic!("a steady state")
         };

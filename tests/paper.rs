@@ -4,7 +4,7 @@
 mod common;
 
 use common::*;
-use stickslip::signal::{FourierSignal, IdealShape};
+use stickslip::{FourierSignal, IdealShape};
 use stickslip::{Scene, Signal};
 
 /// Section 7: `n = 2`, `sqrt(kappa) = 6`, sigma factors: `v_inf = 0.297 m/s`,
@@ -161,7 +161,7 @@ fn reference_rows() -> Vec<ReferenceRow> {
 /// exact; the check is that the reference value is our time stuck over the
 /// first `N` periods from rest for some `N` (continuing with steady-state
 /// periods after our transient ends), to the reference's 1e-4.
-fn check_stiction(r: &stickslip::simulation::RunReport, reference: f64, what: &str) {
+fn check_stiction(r: &stickslip::RunReport, reference: f64, what: &str) {
     let per_period = &r.transient.as_ref().unwrap().stick_times;
     let steady = r.indicators.stiction_fraction * r.period;
     if reference == 0.0 {

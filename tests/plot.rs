@@ -108,7 +108,7 @@ fn figures_are_written_beside_each_other() {
 /// CSV's period is the given scene's.
 #[test]
 fn figure8_uses_the_scene_it_is_given() {
-    use stickslip::signal::SignalSpec;
+    use stickslip::SignalSpec;
     let two = stickslip::Scene {
         signal: SignalSpec::fourier(25e-6, 1.0, 2, false),
         ..Default::default()
@@ -118,7 +118,7 @@ fn figure8_uses_the_scene_it_is_given() {
     let a = stickslip::plot::motion::figure8(&two).unwrap();
     let b = stickslip::plot::motion::figure8(&three).unwrap();
     assert_ne!(a.csv, b.csv);
-    let period = |scene: &stickslip::Scene| stickslip::simulation::build(scene).unwrap().0.period();
+    let period = |scene: &stickslip::Scene| stickslip::build(scene).unwrap().0.period();
     assert!(a.csv.contains(&format!("T = {:e} s", period(&two))));
     assert!(b.csv.contains(&format!("T = {:e} s", period(&three))));
 }

@@ -2,8 +2,8 @@
 //! the exact motion, continuous where the physics is.
 
 use stickslip::Scene;
+use stickslip::SignalSpec;
 use stickslip::plot::motion::{self, Row, Span, parse_periods};
-use stickslip::signal::SignalSpec;
 
 /// The stick-heavy scene of `examples/scenes/stick_heavy.toml`.
 fn stick_heavy() -> Scene {

@@ -6,11 +6,11 @@
 //! figure reads in greyscale; the program version is in the metadata.
 
 use stickslip::Motor;
+use stickslip::SignalSpec;
 use stickslip::plot::motion::{self, Row, Span};
 use stickslip::plot::performance::{GridPoint, figures6_7};
 use stickslip::plot::sweep::{SweepSpec, sweep_figure};
 use stickslip::plot::{Figure, PRODUCER, Preset, scaling, signals, timeline};
-use stickslip::signal::SignalSpec;
 
 const PT_PER_MM: f64 = 72.0 / 25.4;
 

@@ -14,9 +14,9 @@ mod common;
 
 use approx::assert_relative_eq;
 use std::f64::consts::PI;
-use stickslip::motor::Motor;
-use stickslip::power::{ActuatorParams, input_power};
-use stickslip::signal::{FourierSignal, IdealShape, harmonics};
+use stickslip::Motor;
+use stickslip::{ActuatorParams, input_power};
+use stickslip::{FourierSignal, IdealShape, MotorParams, Signal, SignalSpec};
 
 /// (29) and (30) exactly as printed, for velocity amplitude `v_hat` at
 /// angular frequency `w`.
@@ -163,7 +163,18 @@ fn several_harmonics_sum_as_33_to_35() {
 
 /// A two-harmonic signal of fixed shape scaled to `stroke` at `f0`.
 fn shaped(f0: f64, stroke: f64) -> FourierSignal {
-    harmonics::build(f0, &[8.4e-6, 2.0e-6], &[2.83, 2.98], Some(stroke), true).unwrap()
+    let spec = SignalSpec::Harmonics {
+        frequency: f0,
+        amplitudes: vec![8.4e-6, 2.0e-6],
+        phases: vec![2.83, 2.98],
+        scale_to_stroke: Some(stroke),
+        shift_to_minimum: true,
+    };
+    let motor = Motor::new(MotorParams::default()).unwrap();
+    match Signal::build(&spec, &motor).unwrap() {
+        Signal::Fourier(f) => f,
+        Signal::Ideal(_) => unreachable!("a harmonic series is a Fourier signal"),
+    }
 }
 
 #[test]

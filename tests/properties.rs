@@ -5,11 +5,11 @@
 //! nothing beyond the error estimates.
 
 use proptest::prelude::*;
-use stickslip::engine::event::{EventEngine, EventOptions};
-use stickslip::scene::Indicator;
-use stickslip::signal::{IdealShape, SignalSpec};
-use stickslip::simulation::{self, RunReport};
+use stickslip::Indicator;
+use stickslip::RunReport;
 use stickslip::{Error, Motor, MotorParams, Scene, Signal, SimulationError};
+use stickslip::{EventEngine, EventOptions};
+use stickslip::{IdealShape, SignalSpec};
 
 fn signal_spec() -> impl Strategy<Value = SignalSpec> {
     let shape = (-9.0f64..-3.0, -2.0f64..2.0, 0.2f64..1.0, any::<bool>()).prop_map(
@@ -79,7 +79,7 @@ fn scene() -> impl Strategy<Value = Scene> {
 
 fn run(scene: &Scene, signal: &Signal) -> Result<RunReport, Error> {
     let motor = Motor::new(scene.motor).unwrap();
-    simulation::run_with(
+    stickslip::run_with(
         EventEngine::new(signal, &motor, EventOptions::default()),
         scene,
         &motor,

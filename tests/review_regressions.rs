@@ -3,9 +3,9 @@
 mod common;
 
 use common::*;
-use stickslip::scene::Indicator;
-use stickslip::signal::SignalSpec;
-use stickslip::simulation::{self, Regime};
+use stickslip::Indicator;
+use stickslip::Regime;
+use stickslip::SignalSpec;
 use stickslip::{Error, Motor, MotorParams, Scene, SimulationError};
 
 fn scene_from(text: &str) -> Scene {
@@ -27,7 +27,7 @@ fn steady_period_reports_the_transition_at_its_start() {
 /// the slider sticks half of every period.
 #[test]
 fn regime_counts_stick_entered_through_a_jump() {
-    let r = simulation::run(&scene_from(
+    let r = stickslip::run(&scene_from(
         "[motor]\nslider_mass = 1.0\ncontact_force = 1.0\nmu_static = 1.0\nmu_dynamic = 0.5\n\
          extra_acceleration = -0.5\n[signal]\nkind = \"ideal\"\nstroke = 0.01\nkappa = 2.0\nduty = 0.5\n",
     ))
@@ -72,8 +72,8 @@ fn friction_energy_estimate_covers_a_time_shift() {
              stroke = 25e-6\nshift_to_minimum = {shift}\n"
         )
     };
-    let a = simulation::run(&scene_from(&text(true))).unwrap();
-    let b = simulation::run(&scene_from(&text(false))).unwrap();
+    let a = stickslip::run(&scene_from(&text(true))).unwrap();
+    let b = stickslip::run(&scene_from(&text(false))).unwrap();
     let d = (a.indicators.friction_energy - b.indicators.friction_energy).abs();
     let bound = a.error.friction_energy.unwrap() + b.error.friction_energy.unwrap();
     assert!(d <= bound, "{d:e} > {bound:e}");
@@ -87,7 +87,7 @@ fn friction_energy_estimate_covers_a_time_shift() {
 fn run_away_is_detected_with_rod_jumps() {
     let mut scene = scene_with(ideal(4.0, 1.0));
     scene.motor.extra_acceleration = 124.0;
-    match simulation::run(&scene) {
+    match stickslip::run(&scene) {
         Err(Error::Simulation(SimulationError::NoSteadyState { periods, .. })) => {
             assert!(periods < 10_000, "detected after {periods} periods")
         }
@@ -106,7 +106,7 @@ fn unrepresentable_signals_are_refused_and_tiny_friction_works() {
         scale_to_stroke: None,
         shift_to_minimum: true,
     };
-    let err = simulation::run(&scene_with(spec)).unwrap_err().to_string();
+    let err = stickslip::run(&scene_with(spec)).unwrap_err().to_string();
     assert!(err.contains("signal"), "{err}");
 
     let mut scene = scene_with(fourier(25e-6, 1.0, 2, true));
@@ -115,7 +115,7 @@ fn unrepresentable_signals_are_refused_and_tiny_friction_works() {
         mu_dynamic: 1e-300,
         ..MotorParams::default()
     };
-    match simulation::run(&scene) {
+    match stickslip::run(&scene) {
         Ok(r) => assert!(r.indicators.v_inf.is_finite()),
         Err(e) => assert!(e.to_string().contains("signal"), "{e}"),
     }

@@ -5,11 +5,12 @@
 
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
+use stickslip::ActuatorParams;
+use stickslip::Indicator;
 use stickslip::MotorParams;
-use stickslip::error::{ParamError, SceneError};
-use stickslip::power::ActuatorParams;
-use stickslip::scene::{EngineKind, Indicator, Outputs, RunSettings, Scene};
-use stickslip::signal::{IdealShape, SignalSpec};
+use stickslip::{EngineKind, Outputs, RunSettings, Scene};
+use stickslip::{IdealShape, SignalSpec};
+use stickslip::{ParamError, SceneError};
 
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes")

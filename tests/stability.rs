@@ -2,7 +2,9 @@
 //! its check: closed forms, exact scaling laws, symmetries, run-away
 //! detection, constructed grazing and a 1e7-period run without drift.
 
-use stickslip::stability::{catalogue, run_case};
+#[path = "support/stability.rs"]
+mod stability;
+use stability::{catalogue, run_case};
 
 #[test]
 fn every_stress_case_passes_its_check() {

@@ -25,7 +25,7 @@
 use approx::assert_relative_eq;
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
-use stickslip::numerics::trig_roots::TrigPoly;
+use stickslip::numerics::TrigPoly;
 
 /// Unoptimised builds (plain `cargo test`) run nalgebra's Schur form about 30
 /// times slower: they get fewer cases; `cargo test --release` runs them all.

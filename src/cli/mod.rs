@@ -16,7 +16,7 @@
 //!   reader's interest: the command stops quietly with exit 0, as `cat` or
 //!   `seq` do when their reader has gone; any other write failure (a full
 //!   disk) is a one-line error with exit 1;
-//! * values that are valid but implausible ([`crate::Scene::warnings`]) print
+//! * values that are valid but implausible ([`crate::scene::Scene::warnings`]) print
 //!   one line each, `stickslip: warning: ...`, on the error stream before
 //!   the run, unless `--quiet`;
 //! * `--time-limit SECONDS` (or the scene's `[run] time_limit_s`) bounds the
@@ -109,7 +109,7 @@ where
         None => run::run(run::RunArgs::default(), streams).map(|()| 0),
         Some(Command::Run(args)) => run::run(args, streams).map(|()| 0),
         Some(Command::DefaultScene) => {
-            let text = crate::Scene::default().to_toml();
+            let text = crate::scene::Scene::default().to_toml();
             write_out(streams, &text).map(|()| 0)
         }
         Some(Command::Check(args)) => check::check(args, streams).map(|()| 0),
@@ -165,11 +165,11 @@ pub(crate) struct SceneOptions {
 impl SceneOptions {
     /// Applies the options to a loaded scene: `--time-limit` replaces its
     /// `run.time_limit_s`; unless `--quiet`, its warnings
-    /// ([`crate::Scene::warnings`]) are printed on the error stream, one
+    /// ([`crate::scene::Scene::warnings`]) are printed on the error stream, one
     /// line each.
-    pub(crate) fn apply(&self, scene: &mut crate::Scene, streams: &mut Streams<'_>) {
+    pub(crate) fn apply(&self, scene: &mut crate::scene::Scene, streams: &mut Streams<'_>) {
         // Long runs say how far they got, on an interactive terminal.
-        crate::budget::show_progress(
+        crate::simulation::budget::show_progress(
             !self.quiet && std::io::IsTerminal::is_terminal(&std::io::stderr()),
         );
         if let Some(limit) = self.time_limit {
@@ -181,9 +181,9 @@ impl SceneOptions {
     }
 }
 
-/// Prints a scene's warnings ([`crate::Scene::warnings`]) on the error
+/// Prints a scene's warnings ([`crate::scene::Scene::warnings`]) on the error
 /// stream, one line each: `stickslip: warning: <field> = <value> ...`.
-pub(crate) fn print_warnings(scene: &crate::Scene, streams: &mut Streams<'_>) {
+pub(crate) fn print_warnings(scene: &crate::scene::Scene, streams: &mut Streams<'_>) {
     for warning in scene.warnings() {
         let _ = writeln!(streams.err, "stickslip: warning: {warning}");
     }

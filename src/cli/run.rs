@@ -2,7 +2,7 @@
 //! as a summary or as one JSON object (keys in `docs/interface.md`).
 
 use super::{Failure, SceneOptions, Streams, refuse_output_over_input, write_out};
-use crate::{Scene, report, simulation};
+use crate::{report, scene::Scene, simulation};
 use clap::Args;
 use std::path::{Path, PathBuf};
 

@@ -18,7 +18,7 @@ use crate::numerics::line_fit::fit_line;
 use serde::Serialize;
 
 /// Above this standard error the slope is not reported as an order.
-pub const MAX_STANDARD_ERROR: f64 = 0.5;
+pub(crate) const MAX_STANDARD_ERROR: f64 = 0.5;
 
 /// A fitted order.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -39,7 +39,7 @@ pub struct OrderFit {
 }
 
 /// Fits the order of `errors` (same unit as `tolerance`) over `steps` (s).
-pub fn fit(steps: &[f64], errors: &[f64], tolerance: f64) -> OrderFit {
+pub(crate) fn fit(steps: &[f64], errors: &[f64], tolerance: f64) -> OrderFit {
     let m = steps.len();
     let mut fit = OrderFit {
         points: m,

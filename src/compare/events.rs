@@ -26,7 +26,7 @@ use serde::Serialize;
 
 /// What a detectable event is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum EventClass {
+pub(crate) enum EventClass {
     /// The slider starts to slip in this direction.
     StickToSlip(Direction),
     /// The slider sticks.
@@ -37,7 +37,7 @@ pub enum EventClass {
 
 /// An event at a time.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TimedEvent {
+pub(crate) struct TimedEvent {
     /// Time (s).
     pub t: f64,
     /// Its class.
@@ -52,7 +52,7 @@ enum State {
 
 /// Events in the user's samples (`t`, `v_s`) with the exact rod velocity
 /// `v_r` at the same times; `tol` is the stick tolerance (m/s).
-pub fn detect(t: &[f64], v_s: &[f64], v_r: &[f64], tol: f64) -> Vec<TimedEvent> {
+pub(crate) fn detect(t: &[f64], v_s: &[f64], v_r: &[f64], tol: f64) -> Vec<TimedEvent> {
     let state = |i: usize| {
         let rel = v_r[i] - v_s[i];
         if rel.abs() <= tol {
@@ -88,7 +88,12 @@ pub fn detect(t: &[f64], v_s: &[f64], v_r: &[f64], tol: f64) -> Vec<TimedEvent> 
 
 /// The exact events between `from` and `to` (s) of the walked periods, in
 /// the classes of [`detect`].
-pub fn exact_events(periods: &[PeriodRecord], period: f64, from: f64, to: f64) -> Vec<TimedEvent> {
+pub(crate) fn exact_events(
+    periods: &[PeriodRecord],
+    period: f64,
+    from: f64,
+    to: f64,
+) -> Vec<TimedEvent> {
     periods
         .iter()
         .flat_map(|r| r.events.iter())
@@ -129,7 +134,7 @@ pub struct EventMatch {
 
 /// Matches `user` events to `exact` ones (both sorted by time) within
 /// `window` (s).
-pub fn match_events(exact: &[TimedEvent], user: &[TimedEvent], window: f64) -> EventMatch {
+pub(crate) fn match_events(exact: &[TimedEvent], user: &[TimedEvent], window: f64) -> EventMatch {
     let mut used = vec![false; user.len()];
     let mut errors = Vec::new();
     for e in exact {

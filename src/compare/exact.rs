@@ -19,7 +19,7 @@ use crate::signal::Signal;
 
 /// The exact state of rod and slider at one instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ExactState {
+pub(crate) struct ExactState {
     /// Time (s).
     pub t: f64,
     /// Rod position `x_R` (m).
@@ -38,7 +38,7 @@ pub struct ExactState {
 
 /// One simulated period with what the walk recorded of it.
 #[derive(Debug, Clone)]
-pub struct PeriodRecord {
+pub(crate) struct PeriodRecord {
     /// Period index, 1-based.
     pub period: u64,
     /// Slider position at the period start (m).
@@ -56,7 +56,7 @@ pub struct PeriodRecord {
 }
 
 /// Walks the start-up from rest period by period.
-pub struct Walker<'s> {
+pub(crate) struct Walker<'s> {
     engine: EventEngine<'s>,
     signal: &'s Signal,
     start: PeriodStart,
@@ -66,7 +66,7 @@ pub struct Walker<'s> {
 
 impl<'s> Walker<'s> {
     /// A walk from rest at `t = 0` with the event engine's default options.
-    pub fn new(signal: &'s Signal, motor: &Motor) -> Self {
+    pub(crate) fn new(signal: &'s Signal, motor: &Motor) -> Self {
         Self {
             engine: EventEngine::new(signal, motor, EventOptions::default()),
             signal,
@@ -79,14 +79,9 @@ impl<'s> Walker<'s> {
         }
     }
 
-    /// The signal walked.
-    pub fn signal(&self) -> &'s Signal {
-        self.signal
-    }
-
     /// Simulates the next period, keeping its segments (a handful per
     /// period) so that states inside it can be evaluated.
-    pub fn next_period(&mut self) -> Result<PeriodRecord, SimulationError> {
+    pub(crate) fn next_period(&mut self) -> Result<PeriodRecord, SimulationError> {
         let mut observer = (Trajectory::default(), EventLog::default());
         let p = self.next;
         let end = self.engine.run_period(p, self.start, &mut observer)?;
@@ -124,7 +119,7 @@ fn segment_at(record: &PeriodRecord, tau: f64) -> &Segment {
 }
 
 /// The exact state at phase `tau` of a period whose segments were kept.
-pub fn state_in(record: &PeriodRecord, signal: &Signal, tau: f64) -> ExactState {
+pub(crate) fn state_in(record: &PeriodRecord, signal: &Signal, tau: f64) -> ExactState {
     let period = signal.period();
     let tau = tau.clamp(0.0, period);
     let seg = segment_at(record, tau);
@@ -156,7 +151,7 @@ pub fn state_in(record: &PeriodRecord, signal: &Signal, tau: f64) -> ExactState 
 }
 
 /// Period index (1-based) and phase of time `t >= 0`.
-pub fn locate(t: f64, period: f64) -> (u64, f64) {
+pub(crate) fn locate(t: f64, period: f64) -> (u64, f64) {
     let p = (t / period).floor().max(0.0);
     let tau = t - p * period;
     if tau >= period {
@@ -169,7 +164,7 @@ pub fn locate(t: f64, period: f64) -> (u64, f64) {
 /// What [`evaluate`] returns: the states at the requested times and every
 /// period walked up to the last one needed.
 #[derive(Debug, Clone)]
-pub struct ExactSeries {
+pub(crate) struct ExactSeries {
     /// States at the requested times, in their order.
     pub states: Vec<ExactState>,
     /// Periods `1..=last`, segments dropped.
@@ -179,7 +174,7 @@ pub struct ExactSeries {
 /// The exact states at the sorted times `times` (s, `>= 0`), walking the
 /// start-up from rest through at least `min_periods` periods. The segments
 /// of a period are dropped once its samples are evaluated.
-pub fn evaluate(
+pub(crate) fn evaluate(
     signal: &Signal,
     motor: &Motor,
     times: &[f64],
@@ -211,7 +206,7 @@ pub fn evaluate(
 }
 
 /// The short name of an event kind, as in the `event_log` of `run --json`.
-pub fn event_name(kind: &EventKind) -> &'static str {
+pub(crate) fn event_name(kind: &EventKind) -> &'static str {
     match kind {
         EventKind::StickToSlip { .. } => "stick_to_slip",
         EventKind::SlipToStick => "slip_to_stick",

@@ -8,7 +8,7 @@ use plotters::prelude::*;
 
 /// Draws the figure for periods `from..=to` (1-based); `None`: the first
 /// period with samples.
-pub fn draw(report: &Report, periods: Option<(u64, u64)>) -> Result<String, String> {
+pub(crate) fn draw(report: &Report, periods: Option<(u64, u64)>) -> Result<String, String> {
     let period = report.signal.period;
     let mut svg = String::new();
     {

@@ -18,12 +18,12 @@
 //! | `v_S_max`, `v_S_rms` | max and RMS of `v_S,user - v_S` | `max abs(v_R)` |
 //! | `event_time_max`, `event_time_rms` | max and RMS time error of the matched events | `T` |
 
-pub mod convergence;
-pub mod events;
-pub mod exact;
-pub mod figure;
-pub mod read;
-pub mod rod;
+pub(crate) mod convergence;
+pub(crate) mod events;
+pub(crate) mod exact;
+pub(crate) mod figure;
+pub(crate) mod read;
+pub(crate) mod rod;
 
 use crate::scene::{EngineKind, Scene};
 use crate::signal::Signal;
@@ -71,7 +71,7 @@ pub enum CompareError {
     },
     /// The scene cannot be simulated.
     #[error(transparent)]
-    Simulation(#[from] crate::Error),
+    Simulation(#[from] crate::error::Error),
 }
 
 fn location(column: &Option<String>, row: &Option<String>) -> String {
@@ -202,9 +202,9 @@ pub struct CompareOptions {
 }
 
 /// Default tolerance of the verdict (relative).
-pub const DEFAULT_TOLERANCE: f64 = 1e-3;
+pub(crate) const DEFAULT_TOLERANCE: f64 = 1e-3;
 /// Default stick tolerance (relative to `max |v_R|`).
-pub const DEFAULT_STICK_TOLERANCE: f64 = 1e-9;
+pub(crate) const DEFAULT_STICK_TOLERANCE: f64 = 1e-9;
 
 impl Default for CompareOptions {
     fn default() -> Self {
@@ -372,7 +372,7 @@ fn compare_file(
     path: &std::path::Path,
     data: &UserData,
     signal: &Signal,
-    motor: &crate::Motor,
+    motor: &crate::motor::Motor,
     description: &SignalDescription,
     v_inf: f64,
     startup_exact: Option<u64>,

@@ -79,7 +79,7 @@ impl LengthUnit {
 
 /// The quantities a user's file may hold.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Quantity {
+pub(crate) enum Quantity {
     /// Time `t`.
     Time,
     /// Slider position `x_S`.
@@ -96,7 +96,7 @@ pub enum Quantity {
 
 impl Quantity {
     /// All quantities, in reading order.
-    pub const ALL: [Quantity; 6] = [
+    pub(crate) const ALL: [Quantity; 6] = [
         Quantity::Time,
         Quantity::SliderPosition,
         Quantity::SliderVelocity,
@@ -106,7 +106,7 @@ impl Quantity {
     ];
 
     /// The names the quantity is looked up under by default.
-    pub fn default_names(self) -> &'static [&'static str] {
+    pub(crate) fn default_names(self) -> &'static [&'static str] {
         match self {
             Quantity::Time => &["t", "time"],
             Quantity::SliderPosition => &["x_S", "x"],
@@ -152,7 +152,7 @@ impl ReadOptions {
 
 /// One column of a user's data, in SI units.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Column {
+pub(crate) struct Column {
     /// The name in the file.
     pub name: String,
     /// The values.
@@ -161,7 +161,7 @@ pub struct Column {
 
 /// A user's result, validated.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct UserData {
+pub(crate) struct UserData {
     /// Sample times (s).
     pub t: Option<Column>,
     /// Slider positions at the sample times (m).
@@ -178,7 +178,7 @@ pub struct UserData {
 
 impl UserData {
     /// The fixed step of the time column: the median sample spacing (s).
-    pub fn step(&self) -> Option<f64> {
+    pub(crate) fn step(&self) -> Option<f64> {
         let t = &self.t.as_ref()?.values;
         if t.len() < 2 {
             return None;
@@ -211,7 +211,7 @@ impl Origin {
 
 /// Reads a CSV or MAT-file (by extension: `.mat` is a MAT-file, anything
 /// else CSV).
-pub fn read(path: &Path, options: &ReadOptions) -> Result<UserData, CompareError> {
+pub(crate) fn read(path: &Path, options: &ReadOptions) -> Result<UserData, CompareError> {
     let is_mat = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("mat"));
@@ -288,7 +288,7 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<UserData, CompareError
 
 /// Reads only sample times (s): a CSV or MAT-file with a time column or
 /// variable (`t`, `time`), or a text file with one time per line.
-pub fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>, CompareError> {
+pub(crate) fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>, CompareError> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path);
     let headerless = text.as_ref().is_ok_and(|t| {

@@ -25,7 +25,7 @@ use serde::Serialize;
 use std::f64::consts::PI;
 
 /// Default tolerance on the rod deviation, relative to the stroke.
-pub const DEFAULT_ROD_TOLERANCE: f64 = 1e-6;
+pub(crate) const DEFAULT_ROD_TOLERANCE: f64 = 1e-6;
 
 /// Outcome of the rod check.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -56,7 +56,7 @@ fn wrap(a: f64) -> f64 {
 
 /// Checks the user's rod positions `x_user` at times `t` against the exact
 /// ones `x_exact`.
-pub fn check(
+pub(crate) fn check(
     t: &[f64],
     x_user: &[f64],
     x_exact: &[f64],

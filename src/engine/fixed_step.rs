@@ -105,7 +105,7 @@
 //! * [`PeriodEnd::map_derivative`] is the derivative of the scheme's own
 //!   period map, exact almost everywhere: 0 if the slider stuck in the
 //!   period (its velocity was reset to the rod's at a node), else 1. The
-//!   fixed-point search ([`crate::indicators::fixed_point`]) then takes one
+//!   fixed-point search ([`crate::analysis::fixed_point`]) then takes one
 //!   functional-iteration step where the map is locally constant and
 //!   bisects where it is not (a Newton step `g / (1 - 1)` is rejected);
 //! * [`PeriodEngine::last_velocity_uncertainty`] is `h sum |Delta a|` over

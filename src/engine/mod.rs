@@ -15,9 +15,9 @@ use crate::error::SimulationError;
 use crate::signal::Signal;
 pub use observer::{Observer, PeriodEnd};
 
-pub mod event;
-pub mod fixed_step;
-pub mod observer;
+pub(crate) mod event;
+pub(crate) mod fixed_step;
+pub(crate) mod observer;
 
 /// Direction of sliding, seen from the slider: `Forward` while the rod is
 /// faster (`v_R > v_S`, friction pushes the slider forward).
@@ -261,7 +261,7 @@ pub struct PeriodStart {
 
 /// An engine that advances the slider by whole periods: the event engine
 /// or the fixed-step reference. The steady-state and start-up analysis
-/// ([`crate::indicators`]) works with any of them.
+/// ([`crate::analysis`]) works with any of them.
 pub trait PeriodEngine {
     /// The rod signal.
     fn signal(&self) -> &Signal;

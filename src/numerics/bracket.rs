@@ -19,11 +19,11 @@
 /// Hard limit on iterations: steps that shrink at least by half every two
 /// iterations fall below any tolerance above a double's resolution well
 /// within 2 x 64 iterations.
-pub const MAX_ITERATIONS: u32 = 128;
+pub(crate) const MAX_ITERATIONS: u32 = 128;
 
 /// A root and what it cost.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Root {
+pub(crate) struct Root {
     /// The root.
     pub t: f64,
     /// Iterations taken.
@@ -40,7 +40,7 @@ pub struct Root {
 /// `f_lo`, `f_hi` are the known end values; `tol` is the absolute tolerance
 /// in `t`, `f_tol` the noise level of `f`. A `guess` strictly inside the
 /// bracket is the first iterate; otherwise the secant point is.
-pub fn solve(
+pub(crate) fn solve(
     mut f_and_df: impl FnMut(f64) -> (f64, f64),
     (mut lo, mut hi): (f64, f64),
     (f_lo, f_hi): (f64, f64),

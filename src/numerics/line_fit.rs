@@ -6,7 +6,7 @@
 
 /// A fitted line.
 #[derive(Debug, Clone, PartialEq)]
-pub struct LineFit {
+pub(crate) struct LineFit {
     /// Slope `q`.
     pub slope: f64,
     /// Intercept `c`.
@@ -18,7 +18,7 @@ pub struct LineFit {
 }
 
 /// Fits the line through `(x[i], y[i])`; the slices have equal lengths.
-pub fn fit_line(x: &[f64], y: &[f64]) -> LineFit {
+pub(crate) fn fit_line(x: &[f64], y: &[f64]) -> LineFit {
     let m = x.len();
     let mx = x.iter().sum::<f64>() / m as f64;
     let my = y.iter().sum::<f64>() / m as f64;
@@ -42,7 +42,7 @@ pub fn fit_line(x: &[f64], y: &[f64]) -> LineFit {
 
 /// Exponent `s` of a power law `y ∝ x^s` through positive points: the
 /// slope of `ln y` over `ln x`.
-pub fn loglog_slope(points: &[(f64, f64)]) -> f64 {
+pub(crate) fn loglog_slope(points: &[(f64, f64)]) -> f64 {
     let x: Vec<f64> = points.iter().map(|p| p.0.ln()).collect();
     let y: Vec<f64> = points.iter().map(|p| p.1.ln()).collect();
     fit_line(&x, &y).slope

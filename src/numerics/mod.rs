@@ -7,9 +7,10 @@
 //! * [`compensated`]: Neumaier's compensated sum.
 //! * [`line_fit`]: least-squares lines and log-log slopes.
 
-pub mod bracket;
-pub mod compensated;
-pub mod line_fit;
-pub mod trig_roots;
+pub(crate) mod bracket;
+mod compensated;
+pub(crate) mod line_fit;
+pub(crate) mod trig_roots;
 
 pub use compensated::CompensatedSum;
+pub use trig_roots::TrigPoly;

@@ -198,7 +198,7 @@ fn log_label(m: i32, e: i32, (lo, hi): (f64, f64)) -> String {
 
 /// A linear tick value `v` on a grid of step `step`: as many decimals as
 /// the step needs, scientific outside `[1e-3, 1e5)`.
-pub fn tick_label(v: f64, step: f64) -> String {
+pub(super) fn tick_label(v: f64, step: f64) -> String {
     if v == 0.0 {
         return "0".to_owned();
     }

@@ -49,7 +49,7 @@ impl Format {
 }
 
 /// The lowest and highest `--dpi` accepted.
-pub const DPI_RANGE: (f64, f64) = (10.0, 2400.0);
+pub(crate) const DPI_RANGE: (f64, f64) = (10.0, 2400.0);
 
 fn tree(svg: &str) -> Result<usvg::Tree, PlotError> {
     let mut options = usvg::Options {
@@ -65,7 +65,7 @@ fn tree(svg: &str) -> Result<usvg::Tree, PlotError> {
 
 /// The figure as PDF: one page of the SVG's printed size, text embedded,
 /// `producer` and `title` in the information dictionary.
-pub fn pdf(svg: &str, producer: &str, title: &str) -> Result<Vec<u8>, PlotError> {
+pub(crate) fn pdf(svg: &str, producer: &str, title: &str) -> Result<Vec<u8>, PlotError> {
     let tree = tree(svg)?;
     let (chunk, svg_ref) = svg2pdf::to_chunk(&tree, svg2pdf::ConversionOptions::default())
         .map_err(|e| PlotError::Export(format!("converting to PDF: {e}")))?;
@@ -105,7 +105,7 @@ pub fn pdf(svg: &str, producer: &str, title: &str) -> Result<Vec<u8>, PlotError>
 
 /// The figure as PNG at `dpi` pixels per inch, on white, `producer` in
 /// its `Software` text.
-pub fn png(svg: &str, dpi: f64, producer: &str) -> Result<Vec<u8>, PlotError> {
+pub(crate) fn png(svg: &str, dpi: f64, producer: &str) -> Result<Vec<u8>, PlotError> {
     let tree = tree(svg)?;
     let scale = dpi / 96.0;
     let size = tree.size();

@@ -23,7 +23,7 @@ pub struct LegendEntry {
 
 /// The entries of the panels' labelled series, each label once, in order
 /// of first appearance.
-pub fn legend_of(panels: &[Panel]) -> Vec<LegendEntry> {
+pub(super) fn legend_of(panels: &[Panel]) -> Vec<LegendEntry> {
     let mut entries: Vec<LegendEntry> = Vec::new();
     for p in panels {
         for s in &p.series {

@@ -40,19 +40,19 @@
 //! dictionary, PNG `Software` text). [`Figure::write`] writes the figure and its CSV
 //! atomically (temporary file and rename) into an existing directory.
 
-pub mod axes;
+mod axes;
 mod canvas;
-pub mod data;
-pub mod export;
+mod data;
+pub(crate) mod export;
 mod font;
-pub mod layout;
-pub mod legend;
+mod layout;
+mod legend;
 pub mod motion;
 pub mod performance;
 pub mod scaling;
-pub mod series;
+mod series;
 pub mod signals;
-pub mod style;
+pub(crate) mod style;
 pub mod sweep;
 pub mod timeline;
 
@@ -147,7 +147,7 @@ pub enum PlotError {
         figure: String,
         /// The simulator's error.
         #[source]
-        source: crate::Error,
+        source: crate::error::Error,
     },
     /// The data handed in cannot make the figure.
     #[error("figure {figure}: {reason}")]
@@ -175,7 +175,7 @@ pub enum PlotError {
 }
 
 impl PlotError {
-    fn simulation(figure: &str) -> impl FnOnce(crate::Error) -> PlotError + '_ {
+    fn simulation(figure: &str) -> impl FnOnce(crate::error::Error) -> PlotError + '_ {
         move |source| PlotError::Simulation {
             figure: figure.to_owned(),
             source,

@@ -120,7 +120,7 @@ struct Motion {
 
 fn record(
     signal: &Signal,
-    motor: &crate::Motor,
+    motor: &crate::motor::Motor,
     span: Span,
     steady: Option<f64>,
     figure: &str,

@@ -136,7 +136,7 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
     let jobs: Vec<(usize, f64)> = (0..SHAPES.len())
         .flat_map(|s| strokes.iter().map(move |&x| (s, x)))
         .collect();
-    let runs: Vec<Result<Run, crate::Error>> = jobs
+    let runs: Vec<Result<Run, crate::error::Error>> = jobs
         .par_iter()
         .map(|&(s, stroke)| {
             let shape = &SHAPES[s];
@@ -144,8 +144,8 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
             scene.signal = SignalSpec::fourier(stroke, shape.kappa, shape.n, shape.sigma);
             scene.actuator = None;
             scene.outputs.indicators = vec![
-                crate::scene::Indicator::VInf,
-                crate::scene::Indicator::StartupTime,
+                crate::indicator::Indicator::VInf,
+                crate::indicator::Indicator::StartupTime,
             ];
             scene.outputs.trajectory = false;
             scene.outputs.events = false;

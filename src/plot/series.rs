@@ -134,7 +134,11 @@ impl Panel {
 /// The parts of `points` inside the box `x` x `y`, as polylines: each
 /// segment is clipped (Liang-Barsky) and runs of connected clipped segments
 /// are joined.
-pub fn clip_polyline(points: &[(f64, f64)], x: (f64, f64), y: (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+pub(super) fn clip_polyline(
+    points: &[(f64, f64)],
+    x: (f64, f64),
+    y: (f64, f64),
+) -> Vec<Vec<(f64, f64)>> {
     let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
     let mut open = false;
     for w in points.windows(2) {

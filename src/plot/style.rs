@@ -7,15 +7,15 @@
 //! are told apart by colour (the Okabe-Ito palette, safe for the common
 //! colour-vision deficiencies) and, for greyscale print, by their dash
 //! pattern or marker: [`Look::nth`] gives distinct (dash, marker) pairs for
-//! the first [`DISTINCT_LOOKS`] series.
+//! the first 24 series (4 dashes times 6 markers).
 
 use std::fmt;
 
 /// Millimetres to points (1 pt = 1/72 in).
-pub const PT_PER_MM: f64 = 72.0 / 25.4;
+pub(crate) const PT_PER_MM: f64 = 72.0 / 25.4;
 
 /// The smallest text size a journal accepts at the printed size.
-pub const MIN_FONT_PT: f64 = 7.0;
+pub(crate) const MIN_FONT_PT: f64 = 7.0;
 
 /// A named print preset (`--style`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -110,11 +110,8 @@ impl fmt::Display for Rgb {
     }
 }
 
-/// The page the figure is printed on; nothing is drawn in it.
-pub const BACKGROUND: Rgb = Rgb(255, 255, 255);
-
 /// The Okabe-Ito palette, black first.
-pub const PALETTE: [Rgb; 8] = [
+pub(crate) const PALETTE: [Rgb; 8] = [
     Rgb(0, 0, 0),       // black
     Rgb(0, 114, 178),   // blue
     Rgb(213, 94, 0),    // vermillion
@@ -126,13 +123,13 @@ pub const PALETTE: [Rgb; 8] = [
 ];
 
 /// Grey for reference lines, bands and grid lines.
-pub const GREY: Rgb = Rgb(120, 120, 120);
+pub(crate) const GREY: Rgb = Rgb(120, 120, 120);
 
 /// Light grey for the grid.
-pub const GRID: Rgb = Rgb(221, 221, 221);
+pub(crate) const GRID: Rgb = Rgb(221, 221, 221);
 
 /// Fill of bands (the stick band): light enough for data on top.
-pub const BAND: Rgb = Rgb(214, 214, 214);
+pub(crate) const BAND: Rgb = Rgb(214, 214, 214);
 
 /// A line's dash pattern.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -226,14 +223,11 @@ pub struct Look {
     pub weight: f64,
 }
 
-/// [`Look::nth`] gives distinct (dash, marker) pairs for this many series.
-pub const DISTINCT_LOOKS: usize = 24;
-
 impl Look {
     /// The look of the `i`-th series of a figure: colours in palette order;
     /// the first four series differ by their dash pattern alone, later
     /// ones add a marker (so every pair (dash, marker) differs for
-    /// `i < DISTINCT_LOOKS`).
+    /// `i < 24`, 4 dashes times 6 markers).
     pub fn nth(i: usize) -> Look {
         const DASHES: [Dash; 4] = [Dash::Solid, Dash::Dashed, Dash::Dotted, Dash::DashDot];
         const MARKERS: [Marker; 6] = [
@@ -298,5 +292,26 @@ impl Look {
     pub fn weighted(mut self, weight: f64) -> Look {
         self.weight = weight;
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Look;
+
+    #[test]
+    fn the_first_24_looks_differ_in_dash_or_marker() {
+        // 4 dash patterns times 6 markers: the pairs repeat from i = 24 on.
+        let pair = |i: usize| {
+            let l = Look::nth(i);
+            (format!("{:?}", l.dash), format!("{:?}", l.marker))
+        };
+        let pairs: Vec<_> = (0..24).map(pair).collect();
+        for i in 0..24 {
+            for j in 0..i {
+                assert_ne!(pairs[i], pairs[j], "looks {j} and {i}");
+            }
+        }
+        assert_eq!(pair(24), pairs[0]);
     }
 }

@@ -15,6 +15,7 @@
 use super::layout::fitted;
 use super::style::{Dash, GREY, Look, Marker, PALETTE};
 use super::{Axis, Cell, Csv, Figure, Panel, Plot, PlotError, Preset, Series};
+use crate::indicator::Indicator;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -44,12 +45,12 @@ const STEADY_REGIMES: [&str; 3] = ["stuck", "stick-slip", "slip-slip"];
 
 /// Units of the documented columns, for axis labels.
 fn unit(column: &str) -> Option<&'static str> {
+    if let Ok(indicator) = column.parse::<Indicator>() {
+        return Some(indicator.unit()).filter(|u| *u != "1");
+    }
     Some(match column {
-        "v_inf" | "error_v_inf" => "m/s",
-        "startup_time" | "period" | "wall_time_s" => "s",
-        "durability" => "1/N",
-        "friction_energy" => "J",
-        "velocity_per_power" => "m/(s VA)",
+        "error_v_inf" => "m/s",
+        "period" | "wall_time_s" => "s",
         "apparent_power" => "VA",
         "stroke" => "m",
         "contact_force" => "N",

@@ -198,8 +198,8 @@ pub fn event_timeline(base: &Scene) -> Result<Figure, PlotError> {
     scene_a.signal = fourier(0.36, 5, true);
     scene_a.actuator = None;
     scene_a.outputs.indicators = vec![
-        crate::scene::Indicator::VInf,
-        crate::scene::Indicator::StartupTime,
+        crate::indicator::Indicator::VInf,
+        crate::indicator::Indicator::StartupTime,
     ];
     let mut scene_b = scene_a.clone();
     scene_b.signal = fourier(36.0, 2, true);

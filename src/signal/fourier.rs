@@ -73,7 +73,7 @@ pub struct Extrema {
 }
 
 /// The modified Lanczos sigma factor (15): `sigma_k(n) = sinc(k pi / (n+1))`.
-pub fn sigma_factor(k: usize, n: usize) -> f64 {
+pub(crate) fn sigma_factor(k: usize, n: usize) -> f64 {
     let x = k as f64 * PI / (n as f64 + 1.0);
     x.sin() / x
 }
@@ -82,7 +82,12 @@ pub fn sigma_factor(k: usize, n: usize) -> f64 {
 /// acceleration `a_r`, acceleration time `t1` and period `period`:
 /// returns `(a_0 / 2, [a_k], [b_k])` for `k = 1..=n`, where `a_k` multiplies
 /// `cos(k w_0 t)` and `b_k` multiplies `sin(k w_0 t)`.
-pub fn ideal_coefficients(a_r: f64, t1: f64, period: f64, n: usize) -> (f64, Vec<f64>, Vec<f64>) {
+pub(crate) fn ideal_coefficients(
+    a_r: f64,
+    t1: f64,
+    period: f64,
+    n: usize,
+) -> (f64, Vec<f64>, Vec<f64>) {
     // a_R t_1^3 / (6 T), ordered so that no intermediate overflows.
     let offset = a_r * t1 * t1 * (t1 / period) / 6.0;
     let mut a = Vec::with_capacity(n);

@@ -13,7 +13,7 @@ use crate::error::ParamError;
 
 /// Builds the series from validated amplitudes `d_k` (m) and phases `phi_k`
 /// (rad), k = 1..=n.
-pub fn build(
+pub(crate) fn build(
     frequency: f64,
     amplitudes: &[f64],
     phases: &[f64],

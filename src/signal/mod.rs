@@ -18,17 +18,17 @@
 //! where in a period `a_R(tau) - c` changes sign ([`Signal::partition`]), and
 //! where the rod jumps ([`Signal::jump_phase`]).
 
-pub mod description;
-pub mod fourier;
-pub mod harmonics;
-pub mod ideal;
+pub(crate) mod description;
+pub(crate) mod fourier;
+pub(crate) mod harmonics;
+pub(crate) mod ideal;
 
 use crate::error::{Num, ParamError};
 use crate::motor::Motor;
 use std::cmp::Ordering;
 
 pub use fourier::FourierSignal;
-pub use ideal::IdealSignal;
+pub(crate) use ideal::IdealSignal;
 
 /// How the rod amplitude is chosen. Given either as `kappa` (`a_R / a_0`) or
 /// as its square root, as in the paper's figures.
@@ -71,8 +71,8 @@ pub enum SignalSpec {
     },
 }
 
-/// Largest number of harmonics accepted: the root finder works on a
-/// `2n x 2n` eigenproblem, which stays fast and accurate up to here.
+/// Largest number of harmonics accepted: the certified root finder
+/// (`numerics::trig_roots`, `O(n^2)`) is tested up to this degree.
 pub const MAX_HARMONICS: usize = 256;
 
 impl IdealShape {
@@ -197,7 +197,7 @@ impl SignalSpec {
 }
 
 /// Sign of `a_R(tau) - c` on a piece of the period.
-pub type Sign = Ordering;
+pub(crate) type Sign = Ordering;
 
 /// One piece `[start, end)` of a period on which `a_R - c` has one sign.
 #[derive(Debug, Clone, Copy, PartialEq)]

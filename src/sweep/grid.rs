@@ -2,9 +2,9 @@
 //! each made from its index on demand ([`Sweep::case`]), so that a sweep
 //! holds only its axes whatever the number of cases.
 
-use crate::Scene;
 use crate::error::{ParamError, SweepError};
-use crate::scene::Indicator;
+use crate::indicator::Indicator;
+use crate::scene::Scene;
 use crate::signal::{MAX_HARMONICS, SignalSpec};
 use ordered_float::OrderedFloat;
 use rayon::prelude::*;

@@ -188,4 +188,4 @@ pub use grid::{
 pub use merge::{MISSING_LISTED, MergeSummary, merge};
 
 #[cfg(doc)]
-use crate::{Scene, scene::Indicator};
+use crate::{indicator::Indicator, scene::Scene};

@@ -4,8 +4,8 @@
 
 use super::grid::{Axis, AxisKey, AxisValue, Case, Format, MAX_CASES, Sweep};
 use crate::error::{Error, SweepError};
+use crate::indicator::Indicator;
 use crate::provenance::{VERSION, scene_hash};
-use crate::scene::Indicator;
 use crate::simulation::Outcome;
 use std::path::Path;
 
@@ -19,7 +19,7 @@ pub(super) struct Meta {
 
 impl Meta {
     /// The header this program writes for `sweep`.
-    pub fn of(sweep: &Sweep) -> Meta {
+    pub(super) fn of(sweep: &Sweep) -> Meta {
         Meta {
             version: VERSION.to_owned(),
             base_scene_hash: scene_hash(sweep.base()),
@@ -126,7 +126,7 @@ impl Cell {
     }
 
     /// The exact key of an axis cell, `None` for other cells.
-    pub fn axis_key(&self) -> Option<AxisKey> {
+    pub(super) fn axis_key(&self) -> Option<AxisKey> {
         match self {
             Cell::Number(x) => Some(AxisValue::Number(*x).key()),
             Cell::Integer(n) => Some(AxisValue::Integer(*n).key()),
@@ -184,7 +184,7 @@ pub(super) enum Column {
 }
 
 impl Column {
-    pub fn name(self) -> &'static str {
+    pub(super) fn name(self) -> &'static str {
         match self {
             Column::Case => "case",
             Column::Axis(a) => a.name(),
@@ -260,7 +260,7 @@ impl Column {
     /// outcome is a row with its `regime`; indicators that do not exist
     /// (no steady state) are empty. Only an error fills `failure`, and its
     /// row has nothing else but the case's own columns.
-    pub fn cell(self, case: &Case, result: &Result<Outcome, Error>) -> Cell {
+    pub(super) fn cell(self, case: &Case, result: &Result<Outcome, Error>) -> Cell {
         match self {
             Column::Case => return Cell::Unsigned(case.index as u64),
             Column::Axis(a) => return case.value(a).map_or(Cell::Empty, Cell::axis),
@@ -281,7 +281,7 @@ impl Column {
         let (setup, simulation, wall) = outcome.times();
         match self {
             Column::Regime => Cell::Text(outcome.regime().to_owned()),
-            Column::Indicator(indicator) => Cell::number(outcome.indicator(indicator)),
+            Column::Indicator(indicator) => Cell::number(outcome.value(indicator)),
             Column::StictionSteady => Cell::number(report.map(|r| r.indicators.stiction_fraction)),
             Column::ApparentPower => {
                 Cell::number(report.and_then(|r| r.power.as_ref().map(|p| p.apparent_power)))
@@ -484,7 +484,7 @@ pub(super) struct Layout {
 
 impl Layout {
     /// A row as one line, without the line end.
-    pub fn render(&self, cells: &[Cell]) -> String {
+    pub(super) fn render(&self, cells: &[Cell]) -> String {
         match self.format {
             Format::Csv => csv_line(&cells.iter().map(Cell::csv).collect::<Vec<_>>()),
             Format::Jsonl => {
@@ -500,7 +500,7 @@ impl Layout {
     }
 
     /// The lines before the rows, each with its line end.
-    pub fn head(&self) -> String {
+    pub(super) fn head(&self) -> String {
         let mut out = self.meta.line(self.format);
         out.push('\n');
         if self.format == Format::Csv {
@@ -512,7 +512,7 @@ impl Layout {
     }
 
     /// Position of a column.
-    pub fn position(&self, column: Column) -> Option<usize> {
+    pub(super) fn position(&self, column: Column) -> Option<usize> {
         self.columns.iter().position(|c| *c == column)
     }
 }

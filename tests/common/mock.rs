@@ -2,9 +2,9 @@
 //! fixed-point logic.
 
 use stickslip::Signal;
-use stickslip::engine::{Direction, Mode, PeriodEngine, PeriodStart, WorkCounters};
-use stickslip::engine::{Observer, PeriodEnd};
-use stickslip::error::SimulationError;
+use stickslip::SimulationError;
+use stickslip::{Direction, Mode, PeriodEngine, PeriodStart, WorkCounters};
+use stickslip::{Observer, PeriodEnd};
 
 /// A period map with three fixed points, for the analysis with any engine:
 /// in units `x = v / a`, `g(x) = P(x) - x` is 0.2 (rising gently) up to

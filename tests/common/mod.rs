@@ -6,10 +6,10 @@ pub mod mock;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use stickslip::engine::event::{EventEngine, EventOptions};
-use stickslip::scene::Indicator;
-use stickslip::signal::SignalSpec;
-use stickslip::simulation::{self, RunReport};
+use stickslip::Indicator;
+use stickslip::RunReport;
+use stickslip::SignalSpec;
+use stickslip::{EventEngine, EventOptions};
 use stickslip::{Motor, MotorParams, Scene, Signal};
 
 /// The paper's motor (docs/model.md section 6).
@@ -44,14 +44,14 @@ pub fn fourier(stroke: f64, kappa: f64, n: usize, sigma: bool) -> SignalSpec {
 
 /// Runs a scene with the event engine.
 pub fn run(scene: &Scene) -> RunReport {
-    simulation::run(scene).expect("scene runs")
+    stickslip::run(scene).expect("scene runs")
 }
 
 /// Runs a scene's motor and outputs with an arbitrary signal.
 pub fn run_signal(scene: &Scene, signal: &Signal) -> RunReport {
     let motor = Motor::new(scene.motor).expect("valid motor");
     let engine = EventEngine::new(signal, &motor, EventOptions::default());
-    simulation::run_with(engine, scene, &motor).expect("signal runs")
+    stickslip::run_with(engine, scene, &motor).expect("signal runs")
 }
 
 /// Motor parameters with other friction coefficients.

@@ -1,4 +1,5 @@
-//! The stability catalogue: stiff and extreme scenes, each with a check
+//! The stability catalogue (test support, shared by `tests/stability.rs` and
+//! `examples/stability_report.rs`): stiff and extreme scenes, each with a check
 //! against something known — a closed form, an exact scaling law, a
 //! symmetry, or the physics of a run-away. `cargo run --release --example
 //! stability_report` prints the table; `tests/stability.rs` asserts that
@@ -16,16 +17,20 @@
 //! exceeds `run.max_periods` still reports its steady state from the period
 //! map and says that the start-up was not reached.
 
-use crate::engine::event::{EventEngine, EventOptions};
-use crate::engine::{EventKind, Mode, PeriodEngine, PeriodStart};
-use crate::error::Error;
-use crate::motor::{Motor, MotorParams};
-use crate::numerics::CompensatedSum;
-use crate::observer::EventLog;
-use crate::scene::{Indicator, Scene};
-use crate::signal::{FourierSignal, Signal, SignalSpec};
-use crate::simulation::{self, RunReport};
+// Each user (the test, the report example) reads a different part.
+#![allow(dead_code)]
+
 use std::time::Instant;
+use stickslip::Error;
+use stickslip::EventLog;
+use stickslip::Indicator;
+use stickslip::RunReport;
+use stickslip::Scene;
+use stickslip::numerics::CompensatedSum;
+use stickslip::{EventEngine, EventOptions};
+use stickslip::{EventKind, Mode, PeriodEngine, PeriodStart};
+use stickslip::{FourierSignal, Signal, SignalSpec};
+use stickslip::{Motor, MotorParams};
 
 /// What a stress case is checked against.
 #[derive(Debug, Clone)]
@@ -379,11 +384,11 @@ pub fn catalogue() -> Vec<StressCase> {
 
 fn run_scene(case: &StressCase, scene: &Scene) -> Result<RunReport, Error> {
     match &case.signal {
-        None => simulation::run(scene),
+        None => stickslip::run(scene),
         Some(signal) => {
             let motor = Motor::new(scene.motor)?;
             let engine = EventEngine::new(signal, &motor, EventOptions::default());
-            simulation::run_with(engine, scene, &motor)
+            stickslip::run_with(engine, scene, &motor)
         }
     }
 }
@@ -456,7 +461,7 @@ pub fn run_case(case: &StressCase) -> StressOutcome {
                 law,
             },
             Ok(r),
-        ) => match simulation::run(reference) {
+        ) => match stickslip::run(reference) {
             Ok(base) => {
                 extra_periods += base.work.periods;
                 let d = relative(r.indicators.v_inf, base.indicators.v_inf * ratio);
@@ -465,7 +470,7 @@ pub fn run_case(case: &StressCase) -> StressOutcome {
             Err(e) => (false, format!("reference failed: {e}")),
         },
         (Check::Median { rel }, Ok(r)) => {
-            let median = match simulation::build(&case.scene) {
+            let median = match stickslip::build(&case.scene) {
                 Ok((Signal::Fourier(f), _)) => f.velocity_median(),
                 _ => f64::NAN,
             };
@@ -535,7 +540,7 @@ fn mirrored_run(case: &StressCase, scene: &Scene) -> Result<RunReport, Error> {
         None => Signal::build(&scene.signal, &motor)?,
     }
     .mirrored();
-    simulation::run_with(
+    stickslip::run_with(
         EventEngine::new(&signal, &motor, EventOptions::default()),
         scene,
         &motor,
@@ -576,7 +581,7 @@ fn grazing_check(case: &StressCase, phase_fraction: f64) -> (bool, String) {
 }
 
 fn long_run_check(case: &StressCase, r: &RunReport, periods: u64, rel: f64) -> (bool, String) {
-    let Ok((signal, motor)) = simulation::build(&case.scene) else {
+    let Ok((signal, motor)) = stickslip::build(&case.scene) else {
         return (false, "invalid scene".into());
     };
     let mut engine = EventEngine::new(&signal, &motor, EventOptions::default());

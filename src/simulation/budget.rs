@@ -24,14 +24,14 @@ static PROGRESS: AtomicBool = AtomicBool::new(false);
 const PROGRESS_EVERY: Duration = Duration::from_secs(2);
 
 /// Turns progress lines of long runs on standard error on or off.
-pub fn show_progress(on: bool) {
+pub(crate) fn show_progress(on: bool) {
     PROGRESS.store(on, Ordering::Relaxed);
 }
 
 /// An engine that stops with [`SimulationError::TimeLimit`] once the
 /// budget, counted from [`TimeBudget::new`], has run out. Without a budget
 /// it is the engine itself.
-pub struct TimeBudget<E> {
+pub(crate) struct TimeBudget<E> {
     engine: E,
     /// Start of the clock and the budget in seconds, when there is one.
     limit: Option<(Instant, Duration, f64)>,
@@ -43,7 +43,7 @@ pub struct TimeBudget<E> {
 impl<E: PeriodEngine> TimeBudget<E> {
     /// Wraps `engine` with a budget of `seconds` (none: no limit). The
     /// clock starts now. A budget too large for a [`Duration`] is no limit.
-    pub fn new(engine: E, seconds: Option<f64>) -> Self {
+    pub(crate) fn new(engine: E, seconds: Option<f64>) -> Self {
         let limit = seconds.and_then(|s| {
             Duration::try_from_secs_f64(s)
                 .ok()

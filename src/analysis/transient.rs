@@ -1,0 +1,273 @@
+//! The start-up from rest (docs/model.md section 3): periods are simulated
+//! until the boundary velocity has converged, the slider runs away, `p_0.99`
+//! is reached or the period limit. `p_0.99` is the first period with
+//! `v_p >= 0.99 v_inf` (for a slider that moves backwards,
+//! `v_p <= 0.99 v_inf`).
+
+use super::stats::{StatsObserver, StatsWanted};
+use crate::engine::{Direction, EventCounts, Mode, PeriodEngine, PeriodStart};
+use crate::engine::{Observer, PeriodEnd};
+use crate::error::SimulationError;
+use crate::numerics::CompensatedSum;
+
+/// The start-up from rest.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Transient {
+    /// Mean velocity `v_p` of every simulated period, `p = 1..`.
+    pub mean_velocities: Vec<f64>,
+    /// Slider velocity at the end of the last simulated period.
+    pub final_velocity: f64,
+    /// Mode at the end of the last simulated period.
+    pub final_mode: Mode,
+    /// True if the motion's limit was established: the boundary velocity
+    /// repeated exactly, or the measured contraction bounds the remaining
+    /// distance below the tolerance.
+    pub converged: bool,
+    /// Bound on the distance from the last boundary velocity to its limit
+    /// (m/s), when converged: `|c| rho / (1 - rho)` with the last change `c`
+    /// and the largest of the last measured contraction ratios `rho`; 0
+    /// when the boundary state repeated exactly.
+    pub remaining: Option<f64>,
+    /// Estimated error of [`Transient::v_inf`] (m/s), when converged: the
+    /// distance of the last period's start velocity to the limit (the
+    /// remaining distance plus the last change) and the tolerance of the
+    /// test; a mean velocity moves no more than the boundary velocity it
+    /// starts from (two sliders never overtake each other).
+    pub v_inf_error: Option<f64>,
+    /// Time in stick in every period (s), if asked.
+    pub stick_times: Vec<f64>,
+    /// Events in every period.
+    pub period_events: Vec<EventCounts>,
+    /// Slider position at the end of the transient, `sum x_p`, summed with
+    /// compensation so that it does not drift over long runs (m).
+    pub displacement: f64,
+    /// Slider velocity at the end of every simulated period (m/s).
+    pub boundary_velocities: Vec<f64>,
+    /// Set when the slider ran away: it slid a whole period without any
+    /// event outside the rod's velocity range, moving further away.
+    pub run_away: Option<Direction>,
+}
+
+impl Transient {
+    /// Periods simulated.
+    pub fn periods(&self) -> u64 {
+        self.mean_velocities.len() as u64
+    }
+
+    /// The transient's estimate of `v_inf`: `v_p` of the last simulated
+    /// period.
+    pub fn v_inf(&self) -> f64 {
+        self.mean_velocities.last().copied().unwrap_or(0.0)
+    }
+
+    /// `p_0.99` for a given `v_inf`: the first period with
+    /// `v_p / v_inf >= 0.99` (the same sign as `v_inf`); `None` if
+    /// `v_inf = 0` or it was not reached.
+    pub fn startup_periods(&self, v_inf: f64) -> Option<u64> {
+        if v_inf == 0.0 {
+            return None;
+        }
+        self.mean_velocities
+            .iter()
+            .position(|v| reached_startup(*v, v_inf))
+            .map(|i| i as u64 + 1)
+    }
+
+    /// Time in stick over periods `1..=periods` (s), if stick times were
+    /// asked for.
+    pub fn stick_time(&self, periods: u64) -> f64 {
+        self.stick_times.iter().take(periods as usize).sum()
+    }
+
+    /// Events over periods `1..=periods`.
+    pub fn events(&self, periods: u64) -> EventCounts {
+        self.period_events
+            .iter()
+            .take(periods as usize)
+            .fold(EventCounts::default(), |a, e| a.merged(e))
+    }
+}
+
+/// Settings of the analysis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AnalysisOptions {
+    /// Longest transient simulated (periods).
+    pub max_periods: u64,
+    /// The transient stops once its estimated distance to the steady state,
+    /// relative to `max |v_R|`, is below this.
+    pub transient_tolerance: f64,
+    /// When set to the steady-state `v_inf`, the transient stops at the
+    /// first period with `v_p / v_inf >= 0.99` (`p_0.99`) instead of running
+    /// to convergence.
+    pub stop_at_startup: Option<f64>,
+}
+
+impl Default for AnalysisOptions {
+    fn default() -> Self {
+        Self {
+            max_periods: 1_000_000,
+            transient_tolerance: 1e-13,
+            stop_at_startup: None,
+        }
+    }
+}
+
+/// Contraction ratios kept for the convergence test: the remaining
+/// distance is bounded with the largest of them.
+const RATIOS: usize = 3;
+
+/// Simulates the start-up from rest with `observer` attached, until the
+/// boundary velocity has converged, the slider runs away, `p_0.99` is
+/// reached (with [`AnalysisOptions::stop_at_startup`]) or `max_periods`.
+///
+/// Convergence is claimed only on evidence about the limit, never on the
+/// size of a change alone (a motion that has barely begun changes little):
+/// * the boundary state (velocity and mode) repeated exactly, so the orbit
+///   is periodic from there on; or
+/// * the last three contraction ratios `rho_k = |c_k / c_(k-1)|` of
+///   the changes `c_k` of the boundary velocity are below 1 and bound the
+///   remaining distance, `|c| rho / (1 - rho) <= tol` with `rho` the
+///   largest of them.
+///
+/// (Aitken's extrapolation of the mean velocities is not used: they carry
+/// a second component decaying like `rho^2`, which leaves the extrapolated
+/// limit off by far more than the successive limits' agreement shows.)
+pub fn transient<E: PeriodEngine, O: Observer>(
+    engine: &mut E,
+    options: &AnalysisOptions,
+    wanted: StatsWanted,
+    observer: &mut O,
+) -> Result<Transient, SimulationError> {
+    let v_scale = engine.signal().velocity_scale();
+    let (lo_r, hi_r) = engine.signal().velocity_range();
+    let period = engine.signal().period();
+    let tol = options.transient_tolerance * v_scale;
+    let mut stats = StatsObserver::new(
+        engine.signal(),
+        StatsWanted {
+            stiction: wanted.stiction,
+            ..Default::default()
+        },
+    );
+    let mut start = PeriodStart {
+        velocity: 0.0,
+        mode: None,
+    };
+    let mut mean_velocities: Vec<f64> = Vec::new();
+    let mut last_change: Option<f64> = None;
+    let mut ratios: Vec<f64> = Vec::with_capacity(RATIOS);
+    let mut remaining = None;
+    let mut v_inf_error = None;
+    let mut stick_times = Vec::new();
+    let mut period_events = Vec::new();
+    let mut displacement = CompensatedSum::default();
+    let mut boundary_velocities = Vec::new();
+    let mut run_away = None;
+    let mut p = 0u64;
+    while p < options.max_periods {
+        p += 1;
+        let end = engine.run_period(p, start, &mut (&mut stats, &mut *observer))?;
+        let v_p = end.step / period;
+        mean_velocities.push(v_p);
+        displacement.add(end.step);
+        if wanted.stiction {
+            stick_times.push(stats.last.stick_time);
+        }
+        period_events.push(stats.last.events);
+        boundary_velocities.push(end.velocity);
+        let change = end.velocity - start.velocity;
+        let repeated = change == 0.0 && start.mode == Some(end.mode);
+        start = PeriodStart {
+            velocity: end.velocity,
+            mode: Some(end.mode),
+        };
+        if let Some(v_inf) = options.stop_at_startup
+            && v_inf != 0.0
+            && reached_startup(v_p, v_inf)
+        {
+            break;
+        }
+        if repeated {
+            remaining = Some(0.0);
+            v_inf_error = Some(tol);
+            break;
+        }
+        let ev = &stats.last.events;
+        run_away = runaway(&end, ev.total() - ev.jump, change, (lo_r, hi_r));
+        if run_away.is_some() {
+            break;
+        }
+        if let Some(before) = last_change {
+            if ratios.len() == RATIOS {
+                ratios.remove(0);
+            }
+            ratios.push((change / before).abs());
+        }
+        last_change = Some(change);
+        if ratios.len() < RATIOS {
+            continue;
+        }
+        let rho = ratios.iter().copied().fold(0.0, f64::max);
+        if rho.is_nan() || rho >= 1.0 {
+            continue;
+        }
+        let tail = change.abs() * rho / (1.0 - rho);
+        if tail <= tol {
+            remaining = Some(tail);
+            // v_p of this period started one change before the end.
+            v_inf_error = Some(tail + change.abs() + tol);
+            break;
+        }
+    }
+    Ok(Transient {
+        mean_velocities,
+        final_velocity: start.velocity,
+        final_mode: start.mode.unwrap_or(Mode::Stick),
+        converged: remaining.is_some(),
+        remaining,
+        v_inf_error,
+        stick_times,
+        period_events,
+        displacement: displacement.value(),
+        boundary_velocities,
+        run_away,
+    })
+}
+
+/// `v_p / v_inf >= 0.99`: `v_p >= 0.99 v_inf` for a slider moving
+/// forwards, `v_p <= 0.99 v_inf` for one moving backwards.
+fn reached_startup(v_p: f64, v_inf: f64) -> bool {
+    let target = 0.99 * v_inf;
+    if v_inf > 0.0 {
+        v_p >= target
+    } else {
+        v_p <= target
+    }
+}
+
+/// A slider that slid a whole period in one direction without any event
+/// (rod jumps aside: the slider's velocity is outside the rod's range on
+/// both sides of one), ends outside the rod's velocity range and moved
+/// further away cannot come back: `v_rel` never reaches zero again and its
+/// acceleration is constant. This is a run-away (the extra acceleration
+/// `g_t` exceeds what sliding friction `a_d` can hold), returned as the
+/// direction it runs in.
+fn runaway(
+    end: &PeriodEnd,
+    events: u64,
+    change: f64,
+    (lo_r, hi_r): (f64, f64),
+) -> Option<Direction> {
+    if events != 0 {
+        return None;
+    }
+    match end.mode {
+        Mode::Slip(Direction::Backward) if end.velocity > hi_r && change > 0.0 => {
+            Some(Direction::Forward)
+        }
+        Mode::Slip(Direction::Forward) if end.velocity < lo_r && change < 0.0 => {
+            Some(Direction::Backward)
+        }
+        _ => None,
+    }
+}

@@ -1,0 +1,398 @@
+//! Scene files: what to simulate and what to report, in TOML.
+//!
+//! A scene is read in two steps, so that nothing unchecked reaches the
+//! simulation: serde reads the text into a [`SceneFile`], which mirrors the
+//! format and rejects unknown fields, and [`Scene::try_from`] checks every
+//! value and builds the typed [`Scene`]. The field names are the user-facing
+//! contract of `docs/interface.md` and do not change.
+//!
+//! # Format
+//!
+//! All values in SI units. Every table may be omitted: without `[motor]`
+//! the paper's motor ([`MotorParams::default`]), without `[signal]` the
+//! paper's signal ([`SignalSpec::paper_default`]), without `[actuator]` no
+//! power outputs. An empty file is therefore [`Scene::default`] without its
+//! actuator; `examples/scenes/paper_default.toml` is `Scene::default()`
+//! written out.
+//!
+//! ```toml
+//! [motor]                     # omitted: the paper's motor (MotorParams::default)
+//! slider_mass = 1.4e-3        # m_s, kg, > 0                       (required)
+//! contact_force = 1.0         # F_c, N, > 0                         (required)
+//! mu_static = 0.1736          # mu_0, >= 0                          (required)
+//! mu_dynamic = 0.1568         # mu_d, 0 <= mu_d <= mu_0             (required)
+//! extra_acceleration = 0.0    # g_t, m/s^2, finite                  (default 0)
+//!
+//! [signal]                    # omitted: the paper's signal (SignalSpec::paper_default)
+//! kind = "fourier"            # "fourier" | "ideal" | "harmonics"   (required)
+//! # kind = "fourier" and kind = "ideal":
+//! stroke = 25e-6              # x_Rmax, m, > 0                      (required)
+//! sqrt_kappa = 6.0            # or kappa = 36.0: exactly one of the two, > 0
+//! duty = 1.0                  # t_1 / T in (0, 1]; 1 = continuous   (default 1)
+//! # kind = "fourier" only:
+//! harmonics = 2               # n, 1..=256                          (required)
+//! sigma = true                # Lanczos sigma factors (15)          (default false)
+//! # kind = "harmonics" only (x_R = sum_k d_k sin(k w_0 t + phi_k)):
+//! # frequency = 1574.8        # f_0, Hz, > 0                        (required)
+//! # amplitudes = [..]         # d_k, m, >= 0, not all 0             (required)
+//! # phases = [..]             # phi_k, rad, as many as amplitudes   (required)
+//! # scale_to_stroke = false   # scale so that max - min = stroke    (default false)
+//! # stroke = 25e-6            # m: required with scale_to_stroke = true, refused otherwise
+//! # shift_to_minimum = true   # minimum at t = 0 with x_R = 0       (default true)
+//!
+//! [actuator]                  # optional; all five fields required when given
+//! mass = 3.2e-3               # M, kg, > 0
+//! damping = 9.50              # d, N s/m, > 0
+//! stiffness = 24.6e6          # c, N/m, > 0
+//! transfer_factor = 1.985     # alpha, N/V, > 0
+//! capacitance = 800e-9        # C, F, > 0
+//!
+//! [run]                       # optional
+//! engine = "event"            # "event" | "fixed"                   (default "event")
+//! steps_per_harmonic = 5000   # fixed-step engine: steps per period of the
+//!                             # highest harmonic, >= 1               (default 5000)
+//! max_periods = 1000000       # transient limit, >= 1               (default 1000000)
+//! verify_steady_state = false # run the start-up to convergence and cross-check
+//!                             # it against the period map's steady state (default false)
+//! time_limit_s = 60.0         # wall-clock budget of each simulation, s, > 0
+//!                             # (default: none); `--time-limit` overrides it
+//!
+//! [outputs]                   # optional
+//! indicators = ["v_inf", "startup_time", "smoothness", "durability",
+//!               "friction_energy", "stiction_fraction", "velocity_per_power"]
+//! trajectory = false          # record the steady-state period's trajectory
+//! events = false              # record the event log
+//! ```
+//!
+//! # Rules
+//!
+//! * Unknown fields, in any table or at the top level, are errors; so are
+//!   fields that do not belong to the chosen signal `kind` (`harmonics`
+//!   with `kind = "ideal"`, `duty` with `kind = "harmonics"`, ...).
+//! * Integers are accepted where numbers are expected (`contact_force = 1`).
+//!   `nan` and `inf` are valid TOML floats; they are refused with the field's
+//!   name.
+//! * Without an `indicators` list, every indicator the scene allows is
+//!   computed: all of [`Indicator::ALL`], except `velocity_per_power` unless
+//!   an `[actuator]` is given and the signal is not `kind = "ideal"` (the
+//!   ideal signal has infinitely many harmonics, so its input power (35) is
+//!   undefined). Asking for `velocity_per_power` explicitly without an
+//!   actuator or with the ideal signal is an error. An empty list asks for
+//!   no indicators; a name may appear once.
+//! * `sigma` defaults to `false`, the plain partial sums (8), which are what
+//!   the signal *is* without the paper's modification (15); the paper's
+//!   default scene sets it explicitly.
+//!
+//! # Limits and warnings
+//!
+//! * A scene file larger than [`MAX_INPUT_BYTES`] (1 MiB) is refused with
+//!   its size, before it is parsed; files are read through
+//!   [`read_input`], which stops reading at the limit, so that endless
+//!   inputs (`/dev/zero`) are refused too.
+//! * With `engine = "fixed"`, `n x steps_per_harmonic` steps per period
+//!   above [`MAX_FIXED_STEPS_PER_PERIOD`] are refused: one period alone
+//!   would take seconds, and a run simulates many.
+//! * [`Scene::warnings`] lists values that are valid but implausible for a
+//!   piezo inertia drive (usually a unit slip, `stroke = 25` for 25 um);
+//!   the command line prints them on stderr and runs on. The bounds are
+//!   the `PLAUSIBLE_*` constants.
+//!
+//! # Errors
+//!
+//! Malformed TOML, unknown fields and values of the wrong type give
+//! [`SceneError::Parse`], whose one-line message names the field path, the
+//! parser's complaint and the line and column. Values that parse but are not
+//! allowed give [`SceneError::Param`], naming the field path and value
+//! (`motor.slider_mass = -1: must be positive`). An unreadable file gives
+//! [`SceneError::Io`].
+
+mod file;
+mod toml_error;
+mod warnings;
+
+pub(crate) use file::SceneFile;
+pub(crate) use toml_error::parse_message;
+pub use warnings::Warning;
+
+use crate::error::{Num, ParamError, SceneError};
+use crate::indicator::Indicator;
+use crate::motor::{Motor, MotorParams};
+use crate::power::ActuatorParams;
+use crate::signal::SignalSpec;
+use serde::{Deserialize, Serialize};
+use std::io::Read;
+use std::path::Path;
+
+/// Which engine runs the scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum EngineKind {
+    /// The exact event-driven engine.
+    #[default]
+    Event,
+    /// The fixed-step reference (the paper's method, section 7).
+    Fixed,
+}
+
+impl EngineKind {
+    /// The spelling in a scene file.
+    pub fn name(self) -> &'static str {
+        match self {
+            EngineKind::Event => "event",
+            EngineKind::Fixed => "fixed",
+        }
+    }
+}
+
+/// How to run a scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunSettings {
+    /// Which engine.
+    pub engine: EngineKind,
+    /// Fixed-step engine: steps per period of the highest harmonic (>= 1).
+    /// The paper used 5000 (section 7).
+    pub steps_per_harmonic: u32,
+    /// Largest number of transient periods simulated (>= 1).
+    pub max_periods: u64,
+    /// Simulate the start-up from rest until it has converged and report
+    /// its steady state beside the period map's, as a cross-check. Without
+    /// it the start-up stops at `p_0.99`, which is all the indicators need.
+    pub verify_steady_state: bool,
+    /// Wall-clock budget of each simulation of the scene, in seconds,
+    /// finite and positive: a run still going when it runs out stops with
+    /// [`crate::error::SimulationError::TimeLimit`], naming how far it got.
+    /// `None`: no budget.
+    pub time_limit_s: Option<f64>,
+}
+
+impl Default for RunSettings {
+    /// The event engine; 5000 steps per harmonic; 1 000 000 periods; no
+    /// cross-check of the steady state; no time limit.
+    fn default() -> Self {
+        Self {
+            engine: EngineKind::Event,
+            steps_per_harmonic: 5000,
+            max_periods: 1_000_000,
+            verify_steady_state: false,
+            time_limit_s: None,
+        }
+    }
+}
+
+/// Largest scene or sweep file read, in bytes (1 MiB): far above any real
+/// scene (a few hundred bytes; a 256-harmonic series about 10 kB) and small
+/// enough that reading and parsing it takes milliseconds.
+pub const MAX_INPUT_BYTES: u64 = 1 << 20;
+
+/// Largest number of fixed-step steps per period, `n x steps_per_harmonic`
+/// (10^8, about a second of work per period): the paper's 5000 steps per
+/// harmonic at `n = 256` are 1.28e6, `stickslip check`'s finest default
+/// resolution 1.28e7. A run simulates at least a few periods, usually
+/// hundreds, so more steps than this are refused up front.
+pub const MAX_FIXED_STEPS_PER_PERIOD: u64 = 100_000_000;
+
+/// Reads a text input file (scene or sweep) of at most [`MAX_INPUT_BYTES`],
+/// reading no more than one byte past the limit whatever the file is, so
+/// that `/dev/zero` or a huge file is refused quickly and without memory.
+/// A file over the limit is an [`std::io::ErrorKind::InvalidData`] error
+/// whose message gives its size (or "more than", for a stream) and the
+/// limit; so is text that is not UTF-8.
+pub fn read_input(path: &Path) -> std::io::Result<String> {
+    let file = std::fs::File::open(path)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_INPUT_BYTES + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        let size = std::fs::metadata(path)
+            .ok()
+            .filter(|m| m.is_file())
+            .map_or_else(
+                || format!("more than {MAX_INPUT_BYTES} bytes"),
+                |m| format!("{} bytes", m.len()),
+            );
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "the file holds {size}; input files are limited to {MAX_INPUT_BYTES} bytes (1 MiB)"
+            ),
+        ));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "not UTF-8 text (invalid byte at offset {})",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })
+}
+
+/// Steps per period the fixed-step engine takes for `signal`:
+/// `n x steps_per_harmonic`, with `n` the number of harmonics (1 for the
+/// ideal signal), as [`crate::engine::fixed_step::FixedStepEngine::steps_for`]
+/// counts them on the built signal.
+pub(crate) fn fixed_steps_per_period(signal: &SignalSpec, steps_per_harmonic: u32) -> u64 {
+    let harmonics = match signal {
+        SignalSpec::Ideal(_) => 1,
+        SignalSpec::Fourier { harmonics, .. } => *harmonics,
+        SignalSpec::Harmonics { amplitudes, .. } => amplitudes.len().max(1),
+    };
+    harmonics as u64 * u64::from(steps_per_harmonic)
+}
+
+/// Refuses fixed-step resolutions whose work per period exceeds
+/// [`MAX_FIXED_STEPS_PER_PERIOD`]; `field` names where the resolution came
+/// from (`run.steps_per_harmonic`, `--steps`).
+pub(crate) fn check_fixed_steps(
+    signal: &SignalSpec,
+    steps_per_harmonic: u32,
+    field: &str,
+) -> Result<(), ParamError> {
+    let per_period = fixed_steps_per_period(signal, steps_per_harmonic);
+    if per_period > MAX_FIXED_STEPS_PER_PERIOD {
+        return Err(ParamError::out_of_range(
+            field,
+            f64::from(steps_per_harmonic),
+            format!(
+                "gives {} fixed steps per period (n x steps_per_harmonic), above the limit of \
+                 {} (about a second per period, and a run simulates many periods)",
+                Num(per_period as f64),
+                Num(MAX_FIXED_STEPS_PER_PERIOD as f64)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// What a run records and reports.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Outputs {
+    /// Indicators to compute, each at most once.
+    pub indicators: Vec<Indicator>,
+    /// Record the steady-state period's trajectory.
+    pub trajectory: bool,
+    /// Record the event log.
+    pub events: bool,
+}
+
+/// A validated scene: motor, signal, optional actuator, run settings and
+/// outputs.
+///
+/// The fields are public for programmatic scenes (sweeps); after changing
+/// them, [`Scene::validate`] checks the same rules as a scene file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// The motor (`[motor]`).
+    pub motor: MotorParams,
+    /// The rod signal (`[signal]`).
+    pub signal: SignalSpec,
+    /// The actuator model, needed for power outputs (`[actuator]`).
+    pub actuator: Option<ActuatorParams>,
+    /// How to run (`[run]`).
+    pub run: RunSettings,
+    /// What to report (`[outputs]`).
+    pub outputs: Outputs,
+}
+
+impl Default for Scene {
+    /// The paper's example (docs/model.md section 6): its motor, `n = 2`,
+    /// `sqrt(kappa) = 6`, sigma factors, stroke 25 um, the Table 1 actuator,
+    /// the event engine and every indicator.
+    fn default() -> Self {
+        Self {
+            motor: MotorParams::default(),
+            signal: SignalSpec::paper_default(),
+            actuator: Some(ActuatorParams::default()),
+            run: RunSettings::default(),
+            outputs: Outputs {
+                indicators: Indicator::ALL.to_vec(),
+                trajectory: false,
+                events: false,
+            },
+        }
+    }
+}
+
+impl Scene {
+    /// Parses and validates a scene from TOML text; `origin` names the
+    /// source in error messages (a path, or `<string>`).
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, SceneError> {
+        let file: SceneFile = toml::from_str(text).map_err(|e| SceneError::Parse {
+            path: origin.to_owned(),
+            message: parse_message(text, &e),
+        })?;
+        Scene::try_from(file).map_err(|source| SceneError::Param {
+            path: origin.to_owned(),
+            source,
+        })
+    }
+
+    /// Reads, parses and validates a scene file.
+    pub fn from_path(path: &Path) -> Result<Scene, SceneError> {
+        let origin = path.display().to_string();
+        let text = read_input(path).map_err(|source| SceneError::Io {
+            path: origin.clone(),
+            source,
+        })?;
+        Scene::from_toml_str(&text, &origin)
+    }
+
+    /// The scene as TOML, every field written out (`kappa`, not
+    /// `sqrt_kappa`). [`Scene::from_toml_str`] reads it back to an equal
+    /// scene.
+    pub fn to_toml(&self) -> String {
+        toml::to_string(&SceneFile::from(self))
+            .expect("a SceneFile has only tables, numbers, strings, booleans and arrays")
+    }
+
+    /// Checks every rule a scene file is checked against; errors name the
+    /// scene field.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        Motor::new(self.motor)?;
+        self.signal.validate()?;
+        if let Some(actuator) = &self.actuator {
+            actuator.validate()?;
+        }
+        if self.run.steps_per_harmonic == 0 {
+            return Err(ParamError::out_of_range(
+                "run.steps_per_harmonic",
+                0.0,
+                "must be at least 1",
+            ));
+        }
+        if self.run.engine == EngineKind::Fixed {
+            check_fixed_steps(
+                &self.signal,
+                self.run.steps_per_harmonic,
+                "run.steps_per_harmonic",
+            )?;
+        }
+        if let Some(limit) = self.run.time_limit_s {
+            ParamError::positive("run.time_limit_s", limit)?;
+        }
+        if self.run.max_periods == 0 {
+            return Err(ParamError::out_of_range(
+                "run.max_periods",
+                0.0,
+                "must be at least 1",
+            ));
+        }
+        for (i, indicator) in self.outputs.indicators.iter().enumerate() {
+            if self.outputs.indicators[..i].contains(indicator) {
+                return Err(ParamError::Inconsistent {
+                    field: "outputs.indicators".to_owned(),
+                    reason: format!("lists \"{indicator}\" more than once"),
+                });
+            }
+            if let Some(reason) =
+                indicator.unavailable_because(&self.signal, self.actuator.as_ref())
+            {
+                return Err(ParamError::Inconsistent {
+                    field: "outputs.indicators".to_owned(),
+                    reason: reason.to_owned(),
+                });
+            }
+        }
+        Ok(())
+    }
+}

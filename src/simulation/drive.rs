@@ -1,0 +1,323 @@
+//! The driver of a simulation (the procedure of the module docs of
+//! [`crate::simulation`]): the fixed point, the start-up when an indicator
+//! needs it, the check that the two agree, and the error estimates.
+
+use super::{Outcome, RunReport, SteadyStateCheck, Unsettled};
+use crate::analysis::error_estimate::{
+    established_bound, estimate_errors, startup_error, v_inf_error,
+};
+use crate::analysis::{self, AnalysisOptions, StatsWanted, Transient};
+use crate::engine::{Event, PeriodEngine};
+use crate::error::Error;
+use crate::indicator::Indicator;
+use crate::motor::Motor;
+use crate::observer::{EventLog, Trajectory};
+use crate::power::{self};
+use crate::scene::Scene;
+use crate::signal::Signal;
+use std::time::{Duration, Instant};
+
+/// True if the orbit from rest, up to period `periods`, went past the fixed
+/// point `v_star` (beyond its bound) in the direction it moves: then the
+/// fixed point is not the limit (see the module docs, 2.).
+fn orbit_passes(transient: &Transient, periods: u64, v_star: f64, bound: f64) -> bool {
+    let seen = &transient.boundary_velocities
+        [..(periods as usize).min(transient.boundary_velocities.len())];
+    if v_star >= 0.0 {
+        seen.iter().any(|u| *u > v_star + bound)
+    } else {
+        seen.iter().any(|u| *u < v_star - bound)
+    }
+}
+
+pub(super) fn simulate_timed<E: PeriodEngine>(
+    engine: E,
+    scene: &Scene,
+    motor: &Motor,
+    setup_clock: Instant,
+) -> Result<Outcome, Error> {
+    let setup_time = setup_clock.elapsed();
+    let clock = Instant::now();
+    let mut engine = crate::simulation::budget::TimeBudget::new(engine, scene.run.time_limit_s);
+    let requested = scene.outputs.indicators.clone();
+    let wants = |i: Indicator| requested.contains(&i);
+    let signal = engine.signal().clone();
+    let period = signal.period();
+    let wanted = StatsWanted {
+        smoothness: wants(Indicator::Smoothness),
+        sliding: wants(Indicator::Durability) || wants(Indicator::FrictionEnergy),
+        stiction: wants(Indicator::StictionFraction),
+        slip_time: false,
+    };
+    let mut trajectory = scene.outputs.trajectory.then(Trajectory::default);
+    let mut event_log = scene.outputs.events.then(EventLog::default);
+    let mut options = AnalysisOptions {
+        max_periods: scene.run.max_periods,
+        ..Default::default()
+    };
+    let verify = scene.run.verify_steady_state;
+    // The start-up from rest is simulated only for what needs it: the
+    // start-up time, the start-up's stiction fraction, its event log and
+    // the cross-check of verify_steady_state (module docs, "Only what the
+    // scene asks for").
+    let needs_startup = verify
+        || wants(Indicator::StartupTime)
+        || wants(Indicator::StictionFraction)
+        || scene.outputs.events;
+    // Periods run from chosen velocities: the fixed-point searches, the
+    // march of the nearest-fixed-point check and the steady-state periods.
+    let mut map_evaluations = 0;
+    // Fast path: the period map's fixed point from rest (the first period
+    // from rest moves the slider exactly as the map does from v = 0), used
+    // only when established; then either the check that it is the nearest
+    // fixed point, or the start-up up to p_0.99 (on to convergence with
+    // verify_steady_state). See the module docs.
+    let mut rest_fixed_point = None;
+    let fast = if engine.steady_state_from_transient() {
+        None
+    } else {
+        let before = engine.counters().periods;
+        let found = analysis::steady_state(&mut engine, 0.0, wanted, &mut trajectory);
+        map_evaluations += engine.counters().periods - before;
+        let established = found
+            .ok()
+            .and_then(|steady| established_bound(&signal, &steady).map(|b| (steady, b)));
+        match established {
+            Some((steady, bound)) if !needs_startup => {
+                rest_fixed_point = Some((steady.boundary_velocity, steady.v_inf));
+                let (nearest, marched) = analysis::fixed_point_is_nearest(
+                    &mut engine,
+                    steady.boundary_velocity,
+                    bound,
+                    0.0,
+                )?;
+                map_evaluations += u64::from(marched);
+                nearest.then_some((steady, None))
+            }
+            Some((steady, bound)) => {
+                rest_fixed_point = Some((steady.boundary_velocity, steady.v_inf));
+                // p_0.99 exists only where |v_inf| exceeds its error.
+                let v_error = v_inf_error(&signal, &steady, bound);
+                options.stop_at_startup =
+                    (!verify && steady.v_inf.abs() > v_error).then_some(steady.v_inf);
+                let transient = analysis::transient(&mut engine, &options, wanted, &mut event_log)?;
+                // Judge on what a run without verification sees: the
+                // periods up to p_0.99.
+                let seen = transient
+                    .startup_periods(steady.v_inf)
+                    .unwrap_or(transient.periods());
+                let settled_elsewhere = transient.converged
+                    && transient.periods() <= seen
+                    && (transient.v_inf() - steady.v_inf).abs()
+                        > bound + transient.v_inf_error.unwrap_or(0.0);
+                let passes = orbit_passes(&transient, seen, steady.boundary_velocity, bound);
+                // Between the orbit's last point and the fixed point, the
+                // march of the v_inf-only check looks for a nearer one.
+                let last = transient
+                    .boundary_velocities
+                    .get((seen as usize).saturating_sub(1))
+                    .or(transient.boundary_velocities.last())
+                    .copied()
+                    .unwrap_or(0.0);
+                let nearest = if transient.run_away.is_some() || settled_elsewhere || passes {
+                    false
+                } else {
+                    let (nearest, marched) = analysis::fixed_point_is_nearest(
+                        &mut engine,
+                        steady.boundary_velocity,
+                        bound,
+                        last,
+                    )?;
+                    map_evaluations += u64::from(marched);
+                    nearest
+                };
+                if transient.run_away.is_some() || nearest {
+                    Some((steady, Some(transient)))
+                } else {
+                    None
+                }
+            }
+            None => None,
+        }
+    };
+    let from_orbit = fast.is_none();
+    let (steady, transient) = match fast {
+        Some(found) => found,
+        None => {
+            // The orbit from rest decides.
+            options.stop_at_startup = None;
+            event_log = scene.outputs.events.then(EventLog::default);
+            trajectory = scene.outputs.trajectory.then(Trajectory::default);
+            let transient = analysis::transient(&mut engine, &options, wanted, &mut event_log)?;
+            if transient.run_away.is_some() || !transient.converged {
+                return Ok(unsettled(
+                    &engine,
+                    &signal,
+                    &requested,
+                    &transient,
+                    rest_fixed_point,
+                    (setup_time, clock.elapsed()),
+                ));
+            }
+            let before = engine.counters().periods;
+            let seed = transient.final_velocity;
+            let reach = transient.remaining.unwrap_or(0.0) + transient.v_inf_error.unwrap_or(0.0);
+            let steady = match analysis::fixed_point(&mut engine, seed) {
+                Ok((v, d, iterations, correction)) if (v - seed).abs() <= reach => {
+                    analysis::steady_state_at(
+                        &mut engine,
+                        v,
+                        (Some(d), iterations, correction),
+                        wanted,
+                        &mut trajectory,
+                    )?
+                }
+                _ => analysis::steady_state_at(
+                    &mut engine,
+                    seed,
+                    (None, 0, transient.remaining.unwrap_or(0.0)),
+                    wanted,
+                    &mut trajectory,
+                )?,
+            };
+            map_evaluations += engine.counters().periods - before;
+            (steady, Some(transient))
+        }
+    };
+    if let Some(t) = transient.as_ref().filter(|t| t.run_away.is_some()) {
+        return Ok(unsettled(
+            &engine,
+            &signal,
+            &requested,
+            t,
+            rest_fixed_point,
+            (setup_time, clock.elapsed()),
+        ));
+    }
+    let indicators = steady.indicators(motor, period);
+    let mut error = estimate_errors(
+        &signal,
+        &steady,
+        transient.as_ref(),
+        &indicators,
+        from_orbit,
+    );
+    let startup_periods = transient
+        .as_ref()
+        .filter(|_| error.v_inf.is_none_or(|e| indicators.v_inf.abs() > e))
+        .and_then(|t| t.startup_periods(steady.v_inf));
+    error.startup_time = transient
+        .as_ref()
+        .and_then(|t| startup_error(period, &steady, t, startup_periods, error.v_inf));
+    let power = match (&scene.actuator, &signal) {
+        (Some(actuator), Signal::Fourier(s)) if wants(Indicator::VelocityPerPower) => {
+            Some(power::input_power(s, actuator))
+        }
+        _ => None,
+    };
+    if let Some(p) = &power {
+        // S (35) is a closed form of the signal: only v_inf carries error.
+        error.velocity_per_power = error.v_inf.map(|dv| dv / p.apparent_power);
+    }
+    let span = startup_periods.unwrap_or(transient.as_ref().map_or(0, Transient::periods));
+    let mut stiction_fraction_transient = None;
+    let mut event_log_omitted = 0;
+    let mut steady_state_check = None;
+    if let Some(transient) = &transient {
+        stiction_fraction_transient = (wanted.stiction && span > 0)
+            .then(|| transient.stick_time(span) / (span as f64 * period));
+        if error.stiction_fraction.is_some() {
+            // Every start or end of a stick phase in the start-up may be off
+            // by the engine's event-time uncertainty; the sum is rounded per
+            // period.
+            let e = transient.events(span);
+            let transitions = (e.stick_to_slip + e.slip_to_stick + e.jump) as f64;
+            error.stiction_fraction = Some(
+                16.0 * f64::EPSILON * (e.total() as f64 + 2.0)
+                    + transitions * steady.event_time_uncertainty / (span.max(1) as f64 * period),
+            );
+        }
+        steady_state_check = verify.then(|| SteadyStateCheck {
+            v_inf_transient: transient.converged.then(|| transient.v_inf()),
+            difference: transient
+                .converged
+                .then(|| transient.v_inf() - indicators.v_inf),
+            tolerance: error.v_inf.zip(transient.v_inf_error).map(|(a, b)| a + b),
+            periods: transient.periods(),
+        });
+        // Events of the start-up beyond the log's capacity: counted, not
+        // kept.
+        if let Some(log) = &event_log {
+            let logged = log.events.iter().filter(|e| e.period <= span).count();
+            event_log_omitted = transient.events(span).total().saturating_sub(logged as u64);
+        }
+    }
+    let event_log: Option<Vec<Event>> =
+        event_log.map(|l| l.events.into_iter().filter(|e| e.period <= span).collect());
+    let simulation_time = clock.elapsed();
+    Ok(Outcome::Steady(Box::new(RunReport {
+        period,
+        f_max: signal.f_max(),
+        requested,
+        indicators,
+        startup_periods,
+        stiction_fraction_transient,
+        power,
+        error,
+        work: engine.counters(),
+        map_evaluations,
+        setup_time,
+        simulation_time,
+        wall_time: setup_time + simulation_time,
+        steady_state_check,
+        event_log_omitted,
+        event_log,
+        trajectory: trajectory.map(|t| t.segments),
+        transient,
+        steady,
+    })))
+}
+
+/// What is known about a start-up without an established limit: its last
+/// `v_p` bounds `v_inf` on the side it came from (the orbit and its `v_p`
+/// are monotone), an established fixed point beyond it on the other side.
+fn unsettled<E: PeriodEngine>(
+    engine: &E,
+    signal: &Signal,
+    requested: &[Indicator],
+    transient: &Transient,
+    rest_fixed_point: Option<(f64, f64)>,
+    (setup_time, simulation_time): (Duration, Duration),
+) -> Outcome {
+    let last_v_p = transient.mean_velocities.last().copied();
+    let u = transient.final_velocity;
+    let beyond = |w: f64| {
+        rest_fixed_point
+            .filter(|(v, _)| (v - u) * w >= 0.0)
+            .map(|(_, m)| m)
+    };
+    let v_inf_bounds = if u > 0.0 {
+        (last_v_p, beyond(1.0))
+    } else if u < 0.0 {
+        (beyond(-1.0), last_v_p)
+    } else {
+        (None, None)
+    };
+    let state = Unsettled {
+        period: signal.period(),
+        f_max: signal.f_max(),
+        requested: requested.to_vec(),
+        periods_simulated: transient.periods(),
+        last_v_p,
+        final_velocity: u,
+        v_inf_bounds,
+        work: engine.counters(),
+        setup_time,
+        simulation_time,
+        wall_time: setup_time + simulation_time,
+    };
+    match transient.run_away {
+        Some(direction) => Outcome::RunAway { direction, state },
+        None => Outcome::NotConverged(state),
+    }
+}

@@ -1,0 +1,203 @@
+//! One run of a scene: build the signal and the motor, run the engine the
+//! scene names through the start-up and the steady state with the
+//! observers the scene asks for, and gather every requested indicator with
+//! its error estimate, the work counters and the time spent.
+//!
+//! # Outcomes
+//!
+//! Every physical outcome is a result ([`Outcome`]): a periodic steady state
+//! (`stuck`, `stick-slip`, `slip-slip`) with its indicators, a slider that
+//! runs away, or a start-up whose limit was not established within
+//! `run.max_periods` (with the last `v_p` and the bounds on `v_inf` that
+//! are known). Only bad input and internal failures are errors.
+//!
+//! # Which steady state: the motion from rest
+//!
+//! `v_inf` is the limit of the motion from rest (docs/model.md section 3,
+//! the paper's 6.1). With `u_k` the slider velocity at the end of period
+//! `k` (`u_0 = 0`, at rest), `u_(k+1) = P(u_k)` with the period map `P`,
+//! which is non-decreasing (two sliders on the same rod never overtake each
+//! other). Hence:
+//!
+//! 1. the orbit `u_k` is monotone: if `u_1 >= u_0` then, inductively,
+//!    `u_(k+1) = P(u_k) >= P(u_(k-1)) = u_k`; so it converges (or leaves
+//!    every bound: a run-away), and its limit `u*` is the fixed point
+//!    nearest to `u_0` in the direction of `P(u_0) - u_0`;
+//! 2. every fixed point `w` beyond an iterate (`w >= u_k` for a rising
+//!    orbit) bounds the limit: `u_k <= u* <= w`, because `u_k <= w` gives
+//!    `u_(k+1) = P(u_k) <= P(w) = w`; the same holds for the mean
+//!    velocities, `v_p` and the periodic orbit's `v_inf`, since a slider
+//!    starting faster stays ahead;
+//! 3. so a fixed point found by a search from rest is the limit when no
+//!    other fixed point lies between the orbit and it.
+//!
+//! The fast path searches `P(v) = v` from rest ([`analysis::fixed_point`])
+//! and uses the fixed point only when it is *established*: the map
+//! contracts there (`1 - P' > 0`) and the engine's bound on the fixed
+//! point, which contains the range where `P(v) - v` is indistinguishable
+//! from 0 within rounding, is at most `1e-3 max |v_R|` (see
+//! [`established_bound`]). A map that is neutral
+//! within rounding (`P(v) - v` indistinguishable from 0 over a range, as
+//! with `mu_dynamic = 0`, where every velocity of the slip range passes for
+//! a fixed point) or nearly neutral (`P'` within rounding of 1) is not
+//! established. The start-up from rest is then simulated up to `p_0.99`;
+//! if its orbit passes the fixed point (contradicting 2.) or settles
+//! elsewhere before `p_0.99`, the fixed point is rejected. When the fast
+//! path is rejected, the orbit from rest decides: the start-up is simulated
+//! until its limit is established ([`analysis::transient`]: an exact
+//! repetition or a remaining distance bounded by the measured contraction),
+//! and the steady state is taken there (a fixed point searched from the
+//! orbit's end is used only if it lies within that bound). Without an
+//! established limit within `run.max_periods` the result is
+//! [`Outcome::NotConverged`], with the bounds of 2.
+//!
+//! # Only what the scene asks for
+//!
+//! The start-up from rest is simulated only when something needs it: the
+//! start-up time, the start-up's stiction fraction, the event log,
+//! `run.verify_steady_state`. Otherwise (a `v_inf`-only scene, or one that
+//! asks only for steady-state indicators) an established fixed point `v*`
+//! of the search from rest is checked, instead of by the start-up, by a
+//! march of map evaluations from rest towards `v*`
+//! ([`analysis::fixed_point_is_nearest`]): at `x_i = i v* / 16`
+//! (`i = 1..15`), then at `v* (1 - 2^-j)` for `j = 5, 6, ...` while
+//! farther than the fixed point's bound from `v*`. When the start-up is
+//! simulated up to `p_0.99`, the same march runs from the orbit's last
+//! point on, since the orbit covers what lies behind it:
+//!
+//! 4. a point `x` between rest and `v*` that the map does not move towards
+//!    `v*` (`P(x) <= x` for `v* > 0`) proves a fixed point in `[0, x]`:
+//!    `P` maps `[0, x]` into itself (`P(0) > 0`, `P(x) <= x`, monotone), so
+//!    it has a fixed point there (Tarski), nearer than `v*`; the run then
+//!    takes the orbit from rest (the slow path below);
+//! 5. every `x_i` with `g(x_i) = P(x_i) - x_i > 0` proves that no fixed
+//!    point lies in `[x_i, x_i + g(x_i)]`: for `v` there,
+//!    `P(v) >= P(x_i) = x_i + g(x_i) >= v`, equality only at the right
+//!    end, which is `P(x_i)`, and `P(P(x_i)) >= P(x_i)`, so the orbit from
+//!    `x_i` goes on; with `x_0 = 0` this covers `[0, P(0)]`, and the
+//!    orbit's own points cover `[0, u_k]`;
+//! 6. what 4. and 5. leave open is a further pair of fixed points (an
+//!    interval where `g` has the sign opposite to `P(0) - 0`) that falls
+//!    between two march points: narrower than `v* / 16` far from `v*`,
+//!    and narrower than about half its distance to `v*` near it (the
+//!    geometric points). Covering every gap by 5. would take about as many
+//!    map evaluations as the start-up itself, so this is not a proof for
+//!    such pairs: `run.verify_steady_state` settles the doubt by
+//!    simulating the start-up to its own limit and comparing.
+//!
+//! The reported `v_inf`, its error estimate (from the engine's bound at the
+//! fixed point, which needs no start-up) and the steady-state indicators
+//! are bit for bit those of a run that simulates the start-up: both take
+//! the same fixed point from the same search. `periods_simulated` is then
+//! 0, the start-up's event counts are all 0 (counted over what was
+//! simulated), and `work.map_evaluations` ([`RunReport::map_evaluations`])
+//! counts the search, the march and the steady-state periods.
+//!
+//! With `run.verify_steady_state` the start-up is run on to its own limit
+//! and compared with the fixed point: a difference beyond the two error
+//! estimates is reported ([`SteadyStateCheck`]), and nothing else that is
+//! reported changes (the start-up quantities cover periods `1..=p_0.99`
+//! whatever the settings).
+//!
+//! # Cost
+//!
+//! [`RunReport::setup_time`] is the signal's and engine's set-up (root
+//! finding of the signal's event structure included),
+//! [`RunReport::simulation_time`] the analysis (start-up, fixed point,
+//! indicators, power), [`RunReport::wall_time`] all of it.
+
+pub(crate) mod budget;
+mod cache;
+mod drive;
+mod outcome;
+
+pub use crate::analysis::ErrorEstimate;
+pub use cache::SignalCache;
+pub use outcome::{Outcome, Regime, RunReport, SteadyStateCheck, Unsettled};
+
+use crate::engine::PeriodEngine;
+use crate::engine::event::{EventEngine, EventOptions};
+use crate::engine::fixed_step::{FixedStepEngine, FixedStepOptions};
+use crate::error::Error;
+use crate::motor::Motor;
+use crate::scene::{EngineKind, Scene};
+use crate::signal::Signal;
+use drive::simulate_timed;
+use std::time::Instant;
+
+/// Builds the signal and motor of a scene.
+pub fn build(scene: &Scene) -> Result<(Signal, Motor), Error> {
+    let motor = Motor::new(scene.motor)?;
+    let signal = Signal::build(&scene.signal, &motor)?;
+    Ok((signal, motor))
+}
+
+/// Runs a scene with the engine it names; every physical outcome is a
+/// result.
+pub fn simulate(scene: &Scene) -> Result<Outcome, Error> {
+    let clock = Instant::now();
+    let (signal, motor) = build(scene)?;
+    simulate_built(scene, &signal, &motor, clock)
+}
+
+/// [`simulate`] with the scene's signal already built (by
+/// [`Signal::build`] from `scene.signal` and the scene's motor, e.g. from
+/// a [`SignalCache`]): the set-up time is then the motor's and the
+/// engine's alone.
+pub fn simulate_with_signal(scene: &Scene, signal: &Signal) -> Result<Outcome, Error> {
+    let clock = Instant::now();
+    let motor = Motor::new(scene.motor)?;
+    simulate_built(scene, signal, &motor, clock)
+}
+
+pub(super) fn simulate_built(
+    scene: &Scene,
+    signal: &Signal,
+    motor: &Motor,
+    clock: Instant,
+) -> Result<Outcome, Error> {
+    let mut outcome = match scene.run.engine {
+        EngineKind::Event => {
+            let engine = EventEngine::new(signal, motor, EventOptions::default());
+            simulate_timed(engine, scene, motor, clock)?
+        }
+        EngineKind::Fixed => {
+            let options = FixedStepOptions {
+                steps_per_harmonic: scene.run.steps_per_harmonic,
+                ..FixedStepOptions::default()
+            };
+            let engine = FixedStepEngine::new(signal, motor, options);
+            simulate_timed(engine, scene, motor, clock)?
+        }
+    };
+    let wall = clock.elapsed();
+    match &mut outcome {
+        Outcome::Steady(r) => r.wall_time = wall,
+        Outcome::RunAway { state, .. } | Outcome::NotConverged(state) => state.wall_time = wall,
+    }
+    Ok(outcome)
+}
+
+/// Runs a scene with the engine it names, for callers that need a steady
+/// state: a run-away or an unestablished limit is an error here.
+pub fn run(scene: &Scene) -> Result<RunReport, Error> {
+    Ok(simulate(scene)?.into_report()?)
+}
+
+/// [`run`] with a prepared engine.
+pub fn run_with<E: PeriodEngine>(
+    engine: E,
+    scene: &Scene,
+    motor: &Motor,
+) -> Result<RunReport, Error> {
+    Ok(simulate_with(engine, scene, motor)?.into_report()?)
+}
+
+/// The analysis a scene asks for with a prepared engine (set-up time 0).
+pub fn simulate_with<E: PeriodEngine>(
+    engine: E,
+    scene: &Scene,
+    motor: &Motor,
+) -> Result<Outcome, Error> {
+    simulate_timed(engine, scene, motor, Instant::now())
+}

@@ -1,0 +1,183 @@
+//! The shape of the tree (the data path of the crate docs in `src/lib.rs`):
+//! every top-level module depends only on modules of lower layers, so
+//! there is no import cycle; and no source file grows past 700 lines
+//! unless it is listed below with the reason it is one idea.
+//!
+//! The dependencies are read from the source: every `crate::<module>` path
+//! outside comments and `#[cfg(test)]` modules, including the names inside
+//! `use crate::{...}` groups.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fs;
+use std::path::{Path, PathBuf};
+
+/// The layers, bottom first: a module may use modules of lower layers only.
+const LAYERS: &[&[&str]] = &[
+    &["error", "numerics", "interrupt"],
+    &["output"],
+    &["motor"],
+    &["signal"],
+    &["power"],
+    &["engine"],
+    &["observer"],
+    &["analysis"],
+    &["indicator"],
+    &["scene"],
+    &["provenance"],
+    &["simulation"],
+    &["report", "check", "compare"],
+    &["export", "sweep"],
+    &["plot"],
+    &["cli"],
+];
+
+/// Source files allowed over 700 lines, with the reason.
+const LONG_FILES: &[(&str, &str)] = &[];
+
+fn src() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+}
+
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in fs::read_dir(dir).expect("src is readable") {
+        let path = entry.expect("entry").path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// The top-level module a file belongs to (`None` for lib.rs and main.rs).
+fn module_of(path: &Path) -> Option<String> {
+    let rel = path.strip_prefix(src()).expect("inside src");
+    let first = rel.components().next()?.as_os_str().to_str()?.to_owned();
+    let name = first.trim_end_matches(".rs").to_owned();
+    (name != "lib" && name != "main").then_some(name)
+}
+
+/// The code of a file without comments and without its test module.
+fn code(text: &str) -> String {
+    let text = match text.find("#[cfg(test)]\nmod tests") {
+        Some(i) => &text[..i],
+        None => text,
+    };
+    text.lines()
+        .map(|line| match line.find("//") {
+            Some(i) => &line[..i],
+            None => line,
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Every top-level module named after `crate::`.
+fn used_modules(code: &str) -> BTreeSet<String> {
+    let mut used = BTreeSet::new();
+    let ident = |s: &str| -> String {
+        s.chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect()
+    };
+    for (i, _) in code.match_indices("crate::") {
+        let rest = &code[i + "crate::".len()..];
+        if let Some(group) = rest.strip_prefix('{') {
+            let end = group.find('}').expect("a closed use group");
+            for item in group[..end].split(',') {
+                let name = ident(item.trim());
+                if !name.is_empty() {
+                    used.insert(name);
+                }
+            }
+        } else {
+            used.insert(ident(rest));
+        }
+    }
+    used
+}
+
+fn layer_of(module: &str) -> Option<usize> {
+    LAYERS.iter().position(|layer| layer.contains(&module))
+}
+
+#[test]
+fn every_module_uses_only_lower_layers() {
+    let mut files = Vec::new();
+    rust_files(&src(), &mut files);
+    let mut edges: BTreeMap<String, BTreeSet<(String, String)>> = BTreeMap::new();
+    for file in &files {
+        let Some(module) = module_of(file) else {
+            continue;
+        };
+        let text = fs::read_to_string(file).expect("readable source");
+        for used in used_modules(&code(&text)) {
+            if used != module {
+                let name = file.strip_prefix(src()).unwrap().display().to_string();
+                edges
+                    .entry(module.clone())
+                    .or_default()
+                    .insert((used, name));
+            }
+        }
+    }
+    assert!(
+        edges.len() > 10,
+        "the module graph was read ({} modules)",
+        edges.len()
+    );
+    let mut wrong = Vec::new();
+    for (module, uses) in &edges {
+        let own = layer_of(module).unwrap_or_else(|| panic!("module {module} has no layer"));
+        for (used, file) in uses {
+            let theirs = layer_of(used)
+                .unwrap_or_else(|| panic!("{file} uses crate::{used}, which is not a module"));
+            if theirs >= own {
+                wrong.push(format!("{file}: {module} uses {used}"));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "dependencies against the layers:\n{}",
+        wrong.join("\n")
+    );
+}
+
+#[test]
+fn every_top_level_module_has_a_layer() {
+    let lib = fs::read_to_string(src().join("lib.rs")).expect("lib.rs");
+    let declared: Vec<&str> = lib
+        .lines()
+        .filter_map(|l| {
+            let l = l.trim_start_matches("pub ");
+            l.strip_prefix("mod ")?.strip_suffix(';')
+        })
+        .collect();
+    assert!(
+        declared.len() > 10,
+        "modules read from lib.rs: {declared:?}"
+    );
+    for module in declared {
+        assert!(layer_of(module).is_some(), "module {module} has no layer");
+    }
+}
+
+#[test]
+fn no_source_file_is_longer_than_700_lines_without_a_reason() {
+    let mut files = Vec::new();
+    rust_files(&src(), &mut files);
+    let mut long = Vec::new();
+    for file in &files {
+        let lines = fs::read_to_string(file).expect("readable").lines().count();
+        let name = file.strip_prefix(src()).unwrap().display().to_string();
+        if lines > 700 && !LONG_FILES.iter().any(|(f, _)| *f == name) {
+            long.push(format!("{name}: {lines} lines"));
+        }
+    }
+    assert!(
+        long.is_empty(),
+        "files over 700 lines:\n{}",
+        long.join("\n")
+    );
+}
