@@ -4,7 +4,8 @@
 //! on SIGINT/SIGTERM that leaves every finished row on disk.
 
 use super::grid::{Axis, AxisValue, Case, Format, Shard, Sweep};
-use super::table::{self, Cell, Column, Layout, Meta, Parsed};
+use super::layout::{self, Layout, Parsed};
+use super::table::{self, Cell, Column, Meta};
 use crate::error::{Error, SweepError};
 use crate::interrupt;
 use crate::provenance::{VERSION, scene_hash};
@@ -240,7 +241,7 @@ pub fn execute(sweep: &Sweep, options: &Options) -> Result<Summary, SweepError> 
     let mut summary = Summary::default();
     let kept = match std::fs::read_to_string(path) {
         Ok(text) => {
-            let parsed = table::parse(path, &text)?;
+            let parsed = layout::parse(path, &text)?;
             let kept = keep_rows(sweep, &layout, path, parsed, &mut summary)?;
             let expected = file_text(&layout, &kept);
             if text != expected {
@@ -476,7 +477,7 @@ fn sort_file(path: &Path, layout: &Layout) -> Result<(), SweepError> {
         path: path.display().to_string(),
         source,
     })?;
-    let parsed = table::parse(path, &text)?;
+    let parsed = layout::parse(path, &text)?;
     let rows: BTreeMap<usize, String> = parsed
         .rows
         .iter()

@@ -5,7 +5,8 @@
 //! and only if the merge succeeds.
 
 use super::execute::write_atomically;
-use super::table::{self, Layout};
+use super::layout::{self, Layout};
+use super::table;
 use crate::error::SweepError;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -79,7 +80,7 @@ pub fn merge(output: &Path, inputs: &[PathBuf]) -> Result<MergeSummary, SweepErr
             path: input.display().to_string(),
             source,
         })?;
-        let parsed = table::parse(input, &text)?;
+        let parsed = layout::parse(input, &text)?;
         if let Some(line) = parsed.truncated {
             return Err(refuse(
                 input,

@@ -175,8 +175,10 @@
 //! order given (deterministic, whatever the thread count), and
 //! [`execute`] is what `stickslip sweep` does: shard, skip, run, write.
 
+mod axis;
 mod execute;
 mod grid;
+mod layout;
 mod merge;
 mod table;
 
