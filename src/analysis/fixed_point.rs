@@ -49,7 +49,7 @@ pub const NEAREST_MARCH_POINTS: u32 = 16;
 /// The check of a fixed point `v_star` found by the search from rest that
 /// replaces the start-up, or extends it past the orbit's last point `from`
 /// (docs/model.md section 10; the argument is in the module docs of
-/// [`crate::simulation`]): the map is evaluated, in order from `from`
+/// `crate::simulation`): the map is evaluated, in order from `from`
 /// towards `v_star`, at the points `i v_star / 16` (`i = 1..15`) beyond
 /// `from`, then at `v_star (1 - 2^-j)` for `j = 5, 6, ...`, each only
 /// while it is farther than `bound` from `v_star`. The geometric points

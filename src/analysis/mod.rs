@@ -33,7 +33,7 @@
 //! (for a slider that moves backwards, `v_p <= 0.99 v_inf`).
 
 //!
-//! * [`stats`]: the per-period statistics observer;
+//! * `stats`: the per-period statistics observer;
 //! * [`transient`]: the start-up from rest;
 //! * [`fixed_point`]: the period map's fixed point and the check that it is
 //!   the one the start-up reaches;

@@ -23,7 +23,7 @@
 //!   wall-clock time of each simulation; a run that reaches it stops with a
 //!   one-line error naming how far it got.
 //! * a command stopped by SIGINT or SIGTERM exits 130 or 143 (see
-//!   [`crate::interrupt`], installed by [`main`]), leaving no partial or
+//!   `crate::interrupt`, installed by [`main`]), leaving no partial or
 //!   temporary file.
 
 mod check;

@@ -1,11 +1,11 @@
 //! Numerical tools with no physics in them; everything above builds on
 //! them and they depend on nothing else in the crate.
 //!
-//! * [`trig_roots`]: every root of a real trigonometric polynomial in its
+//! * `trig_roots`: every root of a real trigonometric polynomial in its
 //!   period, certified (none missed), in `O(n^2)`.
-//! * [`bracket`]: one root in a sign-changing bracket, safeguarded Newton.
-//! * [`compensated`]: Neumaier's compensated sum.
-//! * [`line_fit`]: least-squares lines and log-log slopes.
+//! * `bracket`: one root in a sign-changing bracket, safeguarded Newton.
+//! * `compensated`: Neumaier's compensated sum.
+//! * `line_fit`: least-squares lines and log-log slopes.
 
 pub(crate) mod bracket;
 mod compensated;

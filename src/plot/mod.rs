@@ -4,15 +4,15 @@
 //!
 //! The kit, one idea per file:
 //!
-//! * [`style`]: print presets (`single-column` 85 mm, `double-column`
+//! * `style`: print presets (`single-column` 85 mm, `double-column`
 //!   175 mm, `slide`), font size, and the look of series (Okabe-Ito
 //!   colours, dash patterns, markers);
-//! * [`axes`]: ranges, linear and logarithmic ticks, tick labels;
-//! * [`series`]: curves, points, bands, panels, clipping;
-//! * [`legend`]: legend entries and their layout;
-//! * [`layout`]: panels in a grid at the printed size, drawn to SVG;
-//! * [`export`]: SVG to PDF (svg2pdf) and PNG (resvg);
-//! * [`data`]: the CSV behind each figure; `font`: the shipped font.
+//! * `axes`: ranges, linear and logarithmic ticks, tick labels;
+//! * `series`: curves, points, bands, panels, clipping;
+//! * `legend`: legend entries and their layout;
+//! * `layout`: panels in a grid at the printed size, drawn to SVG;
+//! * `export`: SVG to PDF (svg2pdf) and PNG (resvg);
+//! * `data`: the CSV behind each figure; `font`: the shipped font.
 //!
 //! The figure families, one file each:
 //!

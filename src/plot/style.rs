@@ -89,7 +89,7 @@ pub struct Style {
 
 impl Style {
     /// Tick labels: one point smaller than the other text, never below
-    /// [`MIN_FONT_PT`].
+    /// `MIN_FONT_PT`.
     pub fn tick_pt(&self) -> f64 {
         (self.font_pt - 1.0).max(MIN_FONT_PT)
     }

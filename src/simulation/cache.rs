@@ -51,7 +51,7 @@ impl SignalCache {
         Ok(map.entry(key).or_insert(signal).clone())
     }
 
-    /// [`simulate`] with the signal from this cache.
+    /// [`simulate`](super::simulate) with the signal from this cache.
     pub fn simulate(&self, scene: &Scene) -> Result<Outcome, Error> {
         let clock = Instant::now();
         let signal = self.get(scene)?;
@@ -59,7 +59,7 @@ impl SignalCache {
         simulate_built(scene, &signal, &motor, clock)
     }
 
-    /// [`run`] with the signal from this cache.
+    /// [`run`](super::run) with the signal from this cache.
     pub fn run(&self, scene: &Scene) -> Result<RunReport, Error> {
         Ok(self.simulate(scene)?.into_report()?)
     }

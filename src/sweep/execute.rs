@@ -225,7 +225,7 @@ fn same_file(_file: &File, path: &Path) -> bool {
 /// existing output are kept and their cases skipped, stale rows dropped and
 /// rerun, the missing cases run in parallel and appended in case order as
 /// they finish; at the end the rows are sorted by case. On SIGINT/SIGTERM
-/// (with [`crate::interrupt::install`]) it stops taking new cases, writes
+/// (with `crate::interrupt::install`) it stops taking new cases, writes
 /// those in flight and returns with [`Summary::interrupted`] set.
 pub fn execute(sweep: &Sweep, options: &Options) -> Result<Summary, SweepError> {
     let path = &options.output;

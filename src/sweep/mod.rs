@@ -113,7 +113,7 @@
 //! Rows are appended, one whole line per write, as cases finish, in case
 //! order (a finished case waits only for earlier cases still running), so
 //! the file is always a header and complete rows. On SIGINT or SIGTERM
-//! ([`crate::interrupt`]) the sweep takes no new case, writes the ones
+//! (`crate::interrupt`) the sweep takes no new case, writes the ones
 //! running and stops (the CLI exits 130 or 143). A rerun keeps those rows
 //! (a last line without its end is dropped), runs the rest, and at the end
 //! rewrites the file sorted by case if the kept and new rows interleave:
