@@ -14,6 +14,7 @@
 
 use super::axes::tick_label;
 use super::{Axis, Cell, Csv, Figure, Look, Panel, Plot, PlotError, Preset, Series, min_max};
+use crate::indicator::Indicator;
 use crate::simulation::RunReport;
 
 /// The ideal stick-slip maximum velocity of the paper's motor, from Part I
@@ -51,20 +52,23 @@ pub struct GridPoint {
 
 impl GridPoint {
     /// The point of a run of the level-`level` case with `n` harmonics.
+    /// Values are [`RunReport::value`]'s, the definitions of every output
+    /// (NaN where a value does not exist).
     pub fn from_report(level: f64, n: usize, sigma: bool, report: &RunReport) -> Self {
+        let value = |i: Indicator| report.value(i).unwrap_or(f64::NAN);
         GridPoint {
             level,
             n,
             sigma,
             f_max: report.f_max.unwrap_or(f64::NAN),
             period: report.period,
-            v_inf: report.indicators.v_inf,
+            v_inf: value(Indicator::VInf),
             startup_periods: report.startup_periods,
-            smoothness: report.indicators.smoothness,
-            durability: report.indicators.durability,
-            stiction_fraction: report.stiction_fraction_transient.unwrap_or(f64::NAN),
+            smoothness: value(Indicator::Smoothness),
+            durability: value(Indicator::Durability),
+            stiction_fraction: value(Indicator::StictionFraction),
             stiction_fraction_steady: report.indicators.stiction_fraction,
-            velocity_per_power: report.velocity_per_power(),
+            velocity_per_power: report.value(Indicator::VelocityPerPower),
         }
     }
 
@@ -76,7 +80,7 @@ impl GridPoint {
 
 /// One indicator panel: title, axis label, how to read the value, the
 /// drawing scale.
-struct Indicator {
+struct PanelSpec {
     title: &'static str,
     label: &'static str,
     value: fn(&GridPoint) -> Option<f64>,
@@ -85,36 +89,36 @@ struct Indicator {
     log: bool,
 }
 
-const INDICATORS: [Indicator; 5] = [
-    Indicator {
+const PANELS: [PanelSpec; 5] = [
+    PanelSpec {
         title: "(a) steady-state velocity",
         log: false,
         label: "v∞ (m/s)",
         value: |p| Some(p.v_inf),
         scale: 1.0,
     },
-    Indicator {
+    PanelSpec {
         title: "(b) start-up time",
         log: true,
         label: "T·p₀.₉₉ (ms)",
         value: GridPoint::startup_time,
         scale: 1e3,
     },
-    Indicator {
+    PanelSpec {
         title: "(c) smoothness",
         log: true,
         label: "ζ∞ (–)",
         value: |p| Some(p.smoothness),
         scale: 1.0,
     },
-    Indicator {
+    PanelSpec {
         title: "(d) velocity per input power",
         log: false,
         label: "v∞ / S (mm s⁻¹ VA⁻¹)",
         value: |p| p.velocity_per_power,
         scale: 1e3,
     },
-    Indicator {
+    PanelSpec {
         title: "(e) durability",
         log: false,
         label: "δ∞ (N⁻¹)",
@@ -163,7 +167,7 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
     }
     // Shared y ranges for both figures: linear from 0 to a round value above
     // the largest value, or logarithmic between 1-2-5 values around all.
-    let ranges: Vec<(f64, f64)> = INDICATORS
+    let ranges: Vec<(f64, f64)> = PANELS
         .iter()
         .map(|ind| {
             let (lo, hi) = min_max(
@@ -232,7 +236,7 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
                 Cell::F(p.stiction_fraction_steady),
             ]);
         }
-        let panels: Vec<Panel> = INDICATORS
+        let panels: Vec<Panel> = PANELS
             .iter()
             .zip(&ranges)
             .enumerate()
