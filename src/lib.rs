@@ -19,6 +19,7 @@
 //! 5. [`report`] prints text or JSON.
 
 pub mod budget;
+pub mod characteristic;
 pub mod check;
 pub mod cli;
 pub mod compare;
