@@ -4,7 +4,7 @@
 //! The drive does work on the load while both push the same way: loads
 //! between 0 and the stall force `F_s` (for a drive that moves forward,
 //! `0 < F < F_s` and `v_inf > 0`; `P = 0` at both ends). Contract: `P` is
-//! evaluated at 8 equally spaced loads inside `(0, F_s)` and compared with
+//! evaluated at 16 equally spaced loads inside `(0, F_s)` and compared with
 //! every load already evaluated there; around the largest, Brent's
 //! minimisation ([`argmin::solver::brent::BrentOpt`]: golden section and
 //! parabolic steps within a bracket) of `-P` between its two neighbours
@@ -22,7 +22,7 @@ use argmin::solver::brent::BrentOpt;
 use std::cell::RefCell;
 
 /// Loads of the first look at `P`.
-const GRID: usize = 8;
+const GRID: usize = 16;
 
 /// The largest output power.
 #[derive(Debug, Clone, PartialEq)]

@@ -24,11 +24,15 @@
 //!   If that load is not of the drive sign (the zone is wider), the zone's
 //!   edge is found by bisection to `1e-10` relative instead. A last load
 //!   `1e-10` beyond shows the sign change;
-//! * `held`: the slider is held still (regime `stuck`: it follows the rod
-//!   throughout, docs/model.md section 1) over a band of loads, and the
-//!   stall force is the band's drive-side edge, found by bisection
-//!   ([`super::domain::boundary`]) to `1e-10` relative; both edges of the
-//!   band are found the same way;
+//! * `held`: Brent's method ended on a load where the slider is held
+//!   still (regime `stuck`: it follows the rod throughout, docs/model.md
+//!   section 1, so `v_inf = 0` exactly), which happens over a band of
+//!   loads. The stall force is the band's drive-side edge, the first load
+//!   held; both edges are found by stepping out in eighths of the holding
+//!   force and bisection ([`super::domain::boundary`]) to `1e-10`
+//!   relative. (Just outside the band the slider slips for a moment per
+//!   period and `v_inf` can be positive yet below its error estimate; the
+//!   regime, decided by the event structure, marks the edge sharply.)
 //! * `run-away`: `v_inf` keeps the drive sign up to the load at which the
 //!   slider starts to run away backwards; that load (the last with a
 //!   steady state) is the stall force;
@@ -105,8 +109,22 @@ pub struct HeldBand {
     pub lower: f64,
     /// Largest load found held (N).
     pub upper: f64,
-    /// Distance from each edge to the nearest load found not held (N).
-    pub tolerance: f64,
+    /// The largest load found not held below the band (N).
+    pub below: f64,
+    /// The smallest load found not held above the band (N).
+    pub above: f64,
+}
+
+impl HeldBand {
+    /// The edge on the side `side` (`-1` low loads, `1` high loads) as the
+    /// pair (load not held, load held).
+    pub fn edge(&self, side: f64) -> (f64, f64) {
+        if side < 0.0 {
+            (self.below, self.lower)
+        } else {
+            (self.above, self.upper)
+        }
+    }
 }
 
 /// Stall force, held band, and the end of the curve on the drive side if
@@ -183,16 +201,15 @@ fn resolve(
     let star = ev.at(star, Purpose::Stall)?;
     let tol = RELATIVE_TOLERANCE * star.load.abs();
     if star.is_held() {
-        let (inside, outside) = boundary(prev.load, star.load, tol, |f| {
-            Ok::<_, CharacteristicError>(ev.at(f, Purpose::HeldBand)?.sign() == Some(s as i8))
-        })?;
+        // The drive-side edge of the band: the first load held.
         let band = band_around(ev, star, holding_force, tol)?;
+        let (outside, inside) = band.edge(-s);
         return Ok(StallResult {
             stall: Stall {
-                force: outside,
+                force: inside,
                 kind: StallKind::Held,
-                bracket: (inside, outside),
-                at: ev.at(outside, Purpose::HeldBand)?,
+                bracket: (outside, inside),
+                at: ev.at(inside, Purpose::HeldBand)?,
             },
             band: Some(band),
             limit: None,
@@ -314,7 +331,7 @@ fn band_around(
     tol: f64,
 ) -> Result<HeldBand, CharacteristicError> {
     let is_held = |f: f64| Ok::<_, CharacteristicError>(ev.at(f, Purpose::HeldBand)?.is_held());
-    let mut edges = [held.load; 2];
+    let mut edges = [(held.load, held.load); 2];
     for (edge, side) in edges.iter_mut().zip([-1.0, 1.0]) {
         let mut inside = held.load;
         for k in 1..=16 {
@@ -323,13 +340,14 @@ fn band_around(
                 inside = f;
                 continue;
             }
-            *edge = boundary(inside, f, tol, is_held)?.0;
+            *edge = boundary(inside, f, tol, is_held)?;
             break;
         }
     }
     Ok(HeldBand {
-        lower: edges[0],
-        upper: edges[1],
-        tolerance: tol,
+        lower: edges[0].0,
+        below: edges[0].1,
+        upper: edges[1].0,
+        above: edges[1].1,
     })
 }

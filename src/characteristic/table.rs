@@ -104,7 +104,8 @@ pub fn to_json(c: &Characteristic, scene: &Scene) -> Value {
         "held_band": c.held_band.map_or(Value::Null, |b| json!({
             "lower": number(b.lower),
             "upper": number(b.upper),
-            "tolerance": number(b.tolerance),
+            "below": number(b.below),
+            "above": number(b.above),
         })),
         "holding_force": number(c.holding_force),
         "max_output_power": c.max_power.as_ref().map_or(Value::Null, |p| json!({
