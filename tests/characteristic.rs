@@ -259,9 +259,11 @@ fn the_load_enters_as_minus_f_over_m() {
     // x = t*^2 (a_R + (a_d - g_t)/2) + a_R t* (T - t*) + (a_d + g_t)(T - t*)^2 / 2,
     // v_inf = x / T (T (2 a_R + a_d) / 4 at g_t = 0), valid for |g_t| < a_d.
     // With g_t = -F/m_s a load F > 0 slows the slider.
-    let mut sc = Scene::default();
-    sc.signal = SignalSpec::ideal(25e-6, 4.0, 1.0);
-    sc.actuator = None;
+    let sc = Scene {
+        signal: SignalSpec::ideal(25e-6, 4.0, 1.0),
+        actuator: None,
+        ..Scene::default()
+    };
     let motor = Motor::new(sc.motor).unwrap();
     let (a_r, a_d) = (4.0 * motor.a_0(), motor.a_d());
     let (_, t) = match &sc.signal {
@@ -311,8 +313,10 @@ fn startup_force_of_the_ideal_signals() {
         (0.5, 0.5 * m.mu_static * m.contact_force),
         (4.0, m.mu_dynamic * m.contact_force),
     ] {
-        let mut sc = Scene::default();
-        sc.signal = SignalSpec::ideal(25e-6, kappa, 1.0);
+        let sc = Scene {
+            signal: SignalSpec::ideal(25e-6, kappa, 1.0),
+            ..Scene::default()
+        };
         let c = characteristic::characteristic(&sc, &coarse((0.0, 0.01))).unwrap();
         let t = c.transient.expect("a start-up");
         assert_rel(t.initial_force, expected, 1e-12, "initial start-up force");
