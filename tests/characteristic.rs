@@ -325,6 +325,55 @@ fn startup_force_of_the_ideal_signals() {
 }
 
 #[test]
+fn a_mirrored_drive_has_the_mirrored_characteristic() {
+    // Mirroring (docs/model.md section 7): the signal -x_R(t) with -g_t
+    // gives exactly -v_inf. Without the shift to the minimum both signals
+    // keep their time origin, so the start-up mirrors too: the mirrored
+    // drive moves backwards, stalls at -F_stall, delivers the same largest
+    // power at -F, and a start-up measurement reports the opposite force.
+    let harmonics = |phases: [f64; 2]| {
+        scene(&format!(
+            "[signal]\nkind = \"harmonics\"\nfrequency = 1574.8\namplitudes = [8.4e-6, 2.0e-6]\n\
+             phases = [{:?}, {:?}]\nscale_to_stroke = false\nshift_to_minimum = false\n",
+            phases[0], phases[1]
+        ))
+    };
+    let phases = [2.833423582473808, 2.9837614633016343];
+    let pi = std::f64::consts::PI;
+    let forward = harmonics(phases);
+    let backward = harmonics([phases[0] - pi, phases[1] - pi]);
+    let cf = characteristic::characteristic(&forward, &coarse((-0.05, 0.05))).unwrap();
+    let cb = characteristic::characteristic(&backward, &coarse((-0.05, 0.05))).unwrap();
+    assert_eq!((cf.drive, cb.drive), (1, -1));
+    assert_rel(
+        cb.no_load.v_inf.unwrap(),
+        -cf.no_load.v_inf.unwrap(),
+        1e-12,
+        "no-load speed",
+    );
+    assert_rel(cb.stall.force, -cf.stall.force, 1e-9, "stall force");
+    let (pf, pb) = (cf.max_power.unwrap(), cb.max_power.unwrap());
+    assert_rel(pb.power, pf.power, 1e-9, "largest power");
+    let (tf, tb) = (cf.transient.unwrap(), cb.transient.unwrap());
+    assert_rel(tb.initial_force, -tf.initial_force, 1e-9, "start-up force");
+    // The datasheet states magnitudes: the same for both.
+    let (sf, sb) = (
+        cf.datasheet.stall_force.unwrap(),
+        cb.datasheet.stall_force.unwrap(),
+    );
+    assert_rel(sb, sf, 1e-9, "datasheet stall force");
+    for p in &cf.points {
+        let (v, e) = v_inf_at(&backward, -p.evaluation.load);
+        let expected = -p.evaluation.v_inf.unwrap();
+        assert!(
+            (v - expected).abs() <= e + p.evaluation.error.unwrap(),
+            "F = {}",
+            p.evaluation.load
+        );
+    }
+}
+
+#[test]
 fn v_inf_does_not_increase_with_the_load() {
     // The comparison argument (docs/model.md section 3 applied to g_t): a
     // slider pushed harder never overtakes one pushed less.

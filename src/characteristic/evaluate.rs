@@ -130,9 +130,11 @@ impl Evaluation {
         })
     }
 
-    /// Mechanical output power `F v_inf` (W).
+    /// Mechanical output power `F v_inf` (W; never `-0`).
     pub fn output_power(&self) -> Option<f64> {
-        self.v_inf.map(|v| self.load * v)
+        self.v_inf
+            .map(|v| self.load * v)
+            .map(|p| if p == 0.0 { 0.0 } else { p })
     }
 }
 

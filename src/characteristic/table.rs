@@ -275,7 +275,7 @@ pub fn to_text(c: &Characteristic) -> String {
         "held still",
         match &c.held_band {
             Some(b) => format!("for loads from {} to {} N", fmt(b.lower), fmt(b.upper)),
-            None => "at no load while running".to_owned(),
+            None => "by no load while running".to_owned(),
         },
     );
     w(
