@@ -51,7 +51,8 @@
 //! 8. `simulation`: runs a scene ([`simulate`]) with a time budget;
 //! 9. `report` (text and JSON), `check` (the fixed-step cross-check),
 //!    `export`, `compare` (a user's own results against the exact ones),
-//!    [`sweep`], [`plot`] (`plot/<figure family>.rs`);
+//!    [`sweep`], [`characteristic`] (velocity against load, stall force),
+//!    [`plot`] (`plot/<figure family>.rs`);
 //! 10. [`cli`], the `stickslip` command.
 //!
 //! Only the names below are public; the rest of the tree is crate-private.
@@ -60,6 +61,7 @@
 #![warn(unreachable_pub)]
 
 pub mod analysis;
+pub mod characteristic;
 mod check;
 pub mod cli;
 mod compare;

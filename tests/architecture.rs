@@ -26,7 +26,7 @@ const LAYERS: &[&[&str]] = &[
     &["provenance"],
     &["simulation"],
     &["report", "check", "compare"],
-    &["export", "sweep"],
+    &["export", "sweep", "characteristic"],
     &["plot"],
     &["cli"],
 ];

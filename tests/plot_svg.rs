@@ -95,6 +95,7 @@ fn figures() -> Vec<Figure> {
         motion::startup(&stick, "startup").unwrap(),
         timeline::scene_timeline(&stick, "timeline").unwrap(),
         sweep,
+        stickslip::plot::characteristic::scene_characteristic(&stick, "characteristic").unwrap(),
     ]
 }
 

@@ -26,6 +26,7 @@
 //!   `crate::interrupt`, installed by [`main`]), leaving no partial or
 //!   temporary file.
 
+mod characteristic;
 mod check;
 mod compare;
 mod plot;
@@ -68,6 +69,9 @@ enum Command {
     Compare(compare::CompareArgs),
     /// Publication figure of a scene or a sweep output (SVG, PDF, PNG).
     Plot(plot::PlotArgs),
+    /// The force-velocity characteristic: v_inf against the load, stall
+    /// force, holding force, output power, datasheet block.
+    Characteristic(characteristic::CharacteristicArgs),
 }
 
 /// The output and error streams of one invocation.
@@ -118,6 +122,9 @@ where
         Some(Command::Signal(args)) => signal::signal(args, streams).map(|()| 0),
         Some(Command::Compare(args)) => return compare::compare(args, streams),
         Some(Command::Plot(args)) => plot::plot(args, streams).map(|()| 0),
+        Some(Command::Characteristic(args)) => {
+            characteristic::characteristic(args, streams).map(|()| 0)
+        }
     };
     match outcome {
         Ok(code) => code,

@@ -27,6 +27,9 @@ enum SceneFigure {
     Startup,
     /// The slider's modes and events over the start-up.
     Timeline,
+    /// v_inf against the load force, with stall force and output power
+    /// (`stickslip characteristic` has more options).
+    Characteristic,
 }
 
 /// A row of the motion figure.
@@ -221,6 +224,9 @@ fn scene_plot(args: &PlotArgs, streams: &mut Streams<'_>) -> Result<Figure, Fail
         SceneFigure::Motion => motion::motion(&scene, &spans, &rows, &name),
         SceneFigure::Startup => motion::startup(&scene, &name),
         SceneFigure::Timeline => crate::plot::timeline::scene_timeline(&scene, &name),
+        SceneFigure::Characteristic => {
+            crate::plot::characteristic::scene_characteristic(&scene, &name)
+        }
     };
     figure.map_err(|e| e.to_string())
 }

@@ -26,7 +26,9 @@
 //!   signals, signals of equal `f_max`);
 //! * [`performance`]: figures 6 and 7 (indicators against `n`);
 //! * [`scaling`]: figure 9 and the stroke scaling law;
-//! * [`timeline`]: the slider's modes over the start-up.
+//! * [`timeline`]: the slider's modes over the start-up;
+//! * [`characteristic`]: `v_inf` against the load, with the stall force
+//!   and the output power.
 //!
 //! # Output contract
 //!
@@ -42,6 +44,7 @@
 
 mod axes;
 mod canvas;
+pub mod characteristic;
 mod data;
 pub(crate) mod export;
 mod font;

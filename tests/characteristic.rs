@@ -1,0 +1,665 @@
+//! The force-velocity characteristic (`stickslip characteristic`,
+//! `src/characteristic/`): the stall force converged on the exact `v_inf`,
+//! closed forms of the held band, the load's sign convention and the
+//! start-up force, the scaling law, the holding force, the datasheet rule,
+//! and the command line's bad input and outputs.
+
+mod common;
+
+use common::{assert_rel, scratch};
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+use stickslip::Indicator;
+use stickslip::Outcome;
+use stickslip::SignalSpec;
+use stickslip::characteristic::StallKind;
+use stickslip::characteristic::{self, Characteristic, LoadAxis, Mark, Options};
+use stickslip::{Motor, Scene, Signal};
+
+/// The characteristic of the default scene with the default options,
+/// computed once for the tests that read it.
+fn default_characteristic() -> &'static Characteristic {
+    static C: OnceLock<Characteristic> = OnceLock::new();
+    C.get_or_init(|| {
+        characteristic::characteristic(&Scene::default(), &Options::default())
+            .expect("the default scene has a characteristic")
+    })
+}
+
+/// Options that sample little: for tests that need the stall force, the
+/// held band or the largest power, which do not depend on the sampling.
+fn coarse(range: (f64, f64)) -> Options {
+    Options {
+        range: Some(range),
+        tolerance: 0.5,
+        max_evaluations: 20,
+        ..Options::default()
+    }
+}
+
+/// `(v_inf, error)` of `scene` at load `force` (N), run directly with
+/// `g_t = -F / m_s`, not through the characteristic's evaluator.
+fn v_inf_at(scene: &Scene, force: f64) -> (f64, f64) {
+    let mut s = scene.clone();
+    s.motor.extra_acceleration = -force / s.motor.slider_mass;
+    s.outputs.indicators = vec![Indicator::VInf];
+    let report = stickslip::run(&s).expect("a steady state");
+    (
+        report.indicators.v_inf,
+        report.error.v_inf.expect("an error estimate"),
+    )
+}
+
+fn scene(text: &str) -> Scene {
+    Scene::from_toml_str(text, "test scene").expect("a valid scene")
+}
+
+#[test]
+fn stall_force_of_the_default_scene_is_converged() {
+    // docs/model.md section 9: the stall force is where v_inf becomes 0.
+    // Converged to 1e-9 relative: v_inf at the reported force lies within
+    // its own error estimate, and v_inf has opposite signs, beyond their
+    // error estimates, 1e-9 relative on either side (runs made directly,
+    // independent of the root finder's evaluations).
+    let c = default_characteristic();
+    let s = &c.stall;
+    assert_eq!(s.kind, StallKind::Crossing);
+    let v = s.at.v_inf.unwrap();
+    let e = s.at.error.unwrap();
+    assert!(
+        v.abs() <= e,
+        "v_inf(F_stall) = {v:e} beyond its error {e:e}"
+    );
+    assert!(s.relative_width() <= 1e-9, "bracket {:?}", s.bracket);
+    let scene = Scene::default();
+    let (below, e_below) = v_inf_at(&scene, s.force * (1.0 - 1e-9));
+    let (above, e_above) = v_inf_at(&scene, s.force * (1.0 + 1e-9));
+    assert!(
+        below > e_below,
+        "v_inf below the stall force: {below:e} ± {e_below:e}"
+    );
+    assert!(
+        above < -e_above,
+        "v_inf above the stall force: {above:e} ± {e_above:e}"
+    );
+    // The drive moves forward at no load (the paper's 0.297 m/s, section 7),
+    // so the stall force is a load against it.
+    assert!(s.force > 0.0 && c.drive == 1);
+    assert_rel(
+        c.no_load.v_inf.unwrap(),
+        0.297137063156,
+        1e-11,
+        "no-load speed",
+    );
+}
+
+#[test]
+fn holding_force_is_mu_0_f_c_and_the_datasheet_follows_the_vendor_rule() {
+    // Holding force at rest mu_0 F_c (docs/model.md section 9, closed form);
+    // recommended load half the stall force (the vendor rule).
+    let c = default_characteristic();
+    let m = Scene::default().motor;
+    assert_eq!(c.holding_force, m.mu_static * m.contact_force);
+    let d = &c.datasheet;
+    assert_eq!(d.holding_force, c.holding_force);
+    assert_eq!(d.stall_force, Some(c.stall.force));
+    assert_eq!(d.recommended_load, Some(c.stall.force / 2.0));
+    assert_eq!(d.max_speed, c.no_load.v_inf.unwrap());
+    let p = c.max_power.as_ref().unwrap();
+    assert_eq!(d.max_output_power, Some(p.power));
+    // The largest power is no smaller than F v_inf at any point between 0
+    // and the stall force (it is their maximum, refined).
+    for point in &c.points {
+        let e = &point.evaluation;
+        if e.load > 0.0 && e.load < c.stall.force {
+            assert!(e.output_power().unwrap() <= p.power, "{e:?}");
+        }
+    }
+    // Another motor: mu_0 = 0.3, F_c = 2.5 N.
+    let mut scene = Scene::default();
+    scene.motor.mu_static = 0.3;
+    scene.motor.contact_force = 2.5;
+    let c2 = characteristic::characteristic(&scene, &coarse((0.0, 0.1))).unwrap();
+    assert_eq!(c2.holding_force, 0.3 * 2.5);
+}
+
+#[test]
+fn stall_force_scales_with_contact_force_and_not_with_mass() {
+    // docs/model.md section 5: scaling every acceleration by r (F_c times r
+    // at fixed m_s, mu and kappa) scales times by 1/sqrt(r) and velocities
+    // by sqrt(r); the load's g_t = -F/m_s scales with the others, so the
+    // stall force scales by r, the no-load speed by sqrt(r) and the power
+    // F v_inf by r^(3/2). With m_s times r at fixed F_c (accelerations over
+    // r) the stall force stays and the speed falls by sqrt(r).
+    let base = Scene::default();
+    let c = characteristic::characteristic(&base, &coarse((0.0, 0.02))).unwrap();
+    let mut strong = base.clone();
+    strong.motor.contact_force *= 4.0;
+    let cs = characteristic::characteristic(&strong, &coarse((0.0, 0.08))).unwrap();
+    assert_rel(
+        cs.stall.force,
+        4.0 * c.stall.force,
+        1e-9,
+        "stall force, F_c x 4",
+    );
+    assert_rel(
+        cs.no_load.v_inf.unwrap(),
+        2.0 * c.no_load.v_inf.unwrap(),
+        1e-12,
+        "speed",
+    );
+    let (p, ps) = (c.max_power.unwrap().power, cs.max_power.unwrap().power);
+    assert_rel(ps, 8.0 * p, 1e-9, "largest power, F_c x 4");
+    let mut heavy = base.clone();
+    heavy.motor.slider_mass *= 4.0;
+    let ch = characteristic::characteristic(&heavy, &coarse((0.0, 0.02))).unwrap();
+    assert_rel(ch.stall.force, c.stall.force, 1e-9, "stall force, m_s x 4");
+    assert_rel(
+        ch.no_load.v_inf.unwrap(),
+        0.5 * c.no_load.v_inf.unwrap(),
+        1e-12,
+        "speed",
+    );
+    assert_rel(
+        ch.max_power.unwrap().power,
+        0.5 * p,
+        1e-9,
+        "largest power, m_s x 4",
+    );
+}
+
+/// A scene whose rod moves as `x_R = d_1 sin(w t + pi/2) + d_2 sin(2 w t + pi/2)`
+/// at 1 kHz, shifted to start at rest, not scaled.
+fn two_cosines(d1: f64, d2: f64) -> Scene {
+    scene(&format!(
+        "[signal]\nkind = \"harmonics\"\nfrequency = 1000.0\namplitudes = [{d1:e}, {d2:e}]\n\
+         phases = [1.5707963267948966, 1.5707963267948966]\nscale_to_stroke = false\n\
+         shift_to_minimum = true\n"
+    ))
+}
+
+#[test]
+fn held_band_of_a_sinusoid_is_the_closed_form() {
+    // One harmonic: a_R = -A cos(w t), A = d w^2. The slider follows the rod
+    // throughout while a_R stays in the stick band [-a_0 + g_t, a_0 + g_t]
+    // (docs/model.md section 1), i.e. for |g_t| <= a_0 - A: loads
+    // |F| <= mu_0 F_c - m_s A. A sinusoid is its own mirror image (section
+    // 7), so there is no drive at zero load and the stall force is 0.
+    let d = 3.0e-6;
+    let scene = two_cosines(d, 0.0);
+    let signal = Signal::build(&scene.signal, &Motor::new(scene.motor).unwrap()).unwrap();
+    let w = 2.0 * std::f64::consts::PI / signal.period();
+    let m = scene.motor;
+    let edge = m.mu_static * m.contact_force - m.slider_mass * d * w * w;
+    assert!(edge > 0.0, "the band exists: A < a_0");
+    let c = characteristic::characteristic(&scene, &coarse((-0.15, 0.15))).unwrap();
+    assert_eq!(c.stall.kind, StallKind::NoDrive);
+    assert_eq!(c.stall.force, 0.0);
+    let band = c.held_band.expect("a held band");
+    let tol = 1e-9 * c.holding_force;
+    assert!(
+        (band.upper - edge).abs() <= tol,
+        "upper {} vs {edge}",
+        band.upper
+    );
+    assert!(
+        (band.lower + edge).abs() <= tol,
+        "lower {} vs {}",
+        band.lower,
+        -edge
+    );
+    // Outside the band the load wins: backwards above it, forwards below.
+    assert!(v_inf_at(&scene, band.above).0 < 0.0);
+    assert!(v_inf_at(&scene, band.below).0 > 0.0);
+}
+
+#[test]
+fn a_drive_held_by_a_band_stalls_at_the_band_edge() {
+    // a_R = -A (cos w t + cos(2 w t) / 4) has min -5A/4 (at w t = 0) and max
+    // 3A/4 (at w t = pi). With A = 0.9 a_0 the rod's swing 2A fits the band
+    // width 2 a_0 but its minimum does not fit [-a_0, a_0]: the drive moves
+    // at no load and is held still (section 1's band) from the load where
+    // -a_0 + g_t = -5A/4 up to where a_0 + g_t = 3A/4:
+    // F from m_s (5A/4 - a_0) to m_s (a_0 - 3A/4); the first is the stall
+    // force.
+    let motor = Motor::default();
+    let w = 2.0 * std::f64::consts::PI * 1000.0;
+    let amplitude = 0.9 * motor.a_0();
+    let scene = two_cosines(amplitude / (w * w), amplitude / (16.0 * w * w));
+    let m_s = scene.motor.slider_mass;
+    let lower = m_s * (1.25 * amplitude - motor.a_0());
+    let upper = m_s * (motor.a_0() - 0.75 * amplitude);
+    let c = characteristic::characteristic(&scene, &coarse((0.0, 0.06))).unwrap();
+    assert_eq!(c.drive, 1, "moves forward at no load");
+    assert_eq!(c.stall.kind, StallKind::Held);
+    let tol = 1e-9 * lower;
+    assert!(
+        (c.stall.force - lower).abs() <= tol,
+        "stall {} vs {lower}",
+        c.stall.force
+    );
+    assert_eq!(c.stall.at.v_inf, Some(0.0), "held still at the stall force");
+    let band = c.held_band.unwrap();
+    assert_eq!(band.lower, c.stall.force);
+    assert!(
+        (band.upper - upper).abs() <= 1e-9 * upper,
+        "upper {} vs {upper}",
+        band.upper
+    );
+    assert!(c.points.iter().any(|p| p.marks.contains(&Mark::HeldEdge)));
+}
+
+#[test]
+fn the_load_enters_as_minus_f_over_m() {
+    // Ideal continuous signal, kappa = 4 (docs/model.md section 7): after
+    // the jump the slider slips backward with -a_d + g_t until the rod
+    // overtakes it at t*, then forward with a_d + g_t. Periodicity gives
+    // t* = T (a_d + g_t) / (2 a_d), the boundary velocity
+    // u = (a_R + a_d - g_t) t*, and the step
+    // x = t*^2 (a_R + (a_d - g_t)/2) + a_R t* (T - t*) + (a_d + g_t)(T - t*)^2 / 2,
+    // v_inf = x / T (T (2 a_R + a_d) / 4 at g_t = 0), valid for |g_t| < a_d.
+    // With g_t = -F/m_s a load F > 0 slows the slider.
+    let sc = Scene {
+        signal: SignalSpec::ideal(25e-6, 4.0, 1.0),
+        actuator: None,
+        ..Scene::default()
+    };
+    let motor = Motor::new(sc.motor).unwrap();
+    let (a_r, a_d) = (4.0 * motor.a_0(), motor.a_d());
+    let (_, t) = match &sc.signal {
+        SignalSpec::Ideal(shape) => shape.times(&motor),
+        _ => unreachable!(),
+    };
+    let closed = |g: f64| {
+        let ts = t * (a_d + g) / (2.0 * a_d);
+        let r = t - ts;
+        (ts * ts * (a_r + 0.5 * (a_d - g)) + a_r * ts * r + 0.5 * (a_d + g) * r * r) / t
+    };
+    let c = characteristic::characteristic(&sc, &coarse((-0.1, 0.1))).unwrap();
+    let mut checked = 0;
+    for p in &c.points {
+        let e = &p.evaluation;
+        let g = e.extra_acceleration;
+        assert_eq!(g, -e.load / sc.motor.slider_mass);
+        let v = e.v_inf.unwrap();
+        let expected = closed(g);
+        assert!(
+            (v - expected).abs() <= e.error.unwrap() + 1e-14 * expected.abs(),
+            "F = {}: {v:e} vs {expected:e}",
+            e.load
+        );
+        checked += 1;
+    }
+    assert!(checked >= 17, "{checked} points");
+    // v_inf -> 0 only as g_t -> -a_d, where sliding friction can no longer
+    // hold the load and the slider runs away: the stall force is that
+    // limit, m_s a_d = mu_d F_c.
+    assert_eq!(c.stall.kind, StallKind::RunAway);
+    let limit = sc.motor.mu_dynamic * sc.motor.contact_force;
+    assert!((c.stall.force - limit).abs() <= 1e-9 * c.holding_force);
+    assert!(c.stall.force <= limit + 1e-9 * c.holding_force);
+}
+
+#[test]
+fn startup_force_of_the_ideal_signals() {
+    // The start-up from rest at zero load (docs/model.md section 7): with
+    // kappa <= 1 the slider sticks through period 1, v_1 = x_Rmax / T =
+    // a_R T / 2, so m_s v_1 / (T/2) = m_s kappa a_0 = kappa mu_0 F_c; with
+    // kappa > 1 it slips forward with a_d through period 1, v_1 = a_d T / 2,
+    // giving m_s a_d = mu_d F_c. The largest per-period force is at least
+    // the initial one.
+    let m = Scene::default().motor;
+    for (kappa, expected) in [
+        (0.5, 0.5 * m.mu_static * m.contact_force),
+        (4.0, m.mu_dynamic * m.contact_force),
+    ] {
+        let sc = Scene {
+            signal: SignalSpec::ideal(25e-6, kappa, 1.0),
+            ..Scene::default()
+        };
+        let c = characteristic::characteristic(&sc, &coarse((0.0, 0.01))).unwrap();
+        let t = c.transient.expect("a start-up");
+        assert_rel(t.initial_force, expected, 1e-12, "initial start-up force");
+        assert!(t.max_force >= t.initial_force);
+    }
+}
+
+#[test]
+fn a_mirrored_drive_has_the_mirrored_characteristic() {
+    // Mirroring (docs/model.md section 7): the signal -x_R(t) with -g_t
+    // gives exactly -v_inf. Without the shift to the minimum both signals
+    // keep their time origin, so the start-up mirrors too: the mirrored
+    // drive moves backwards, stalls at -F_stall, delivers the same largest
+    // power at -F, and a start-up measurement reports the opposite force.
+    let harmonics = |phases: [f64; 2]| {
+        scene(&format!(
+            "[signal]\nkind = \"harmonics\"\nfrequency = 1574.8\namplitudes = [8.4e-6, 2.0e-6]\n\
+             phases = [{:?}, {:?}]\nscale_to_stroke = false\nshift_to_minimum = false\n",
+            phases[0], phases[1]
+        ))
+    };
+    let phases = [2.833423582473808, 2.9837614633016343];
+    let pi = std::f64::consts::PI;
+    let forward = harmonics(phases);
+    let backward = harmonics([phases[0] - pi, phases[1] - pi]);
+    let cf = characteristic::characteristic(&forward, &coarse((-0.05, 0.05))).unwrap();
+    let cb = characteristic::characteristic(&backward, &coarse((-0.05, 0.05))).unwrap();
+    assert_eq!((cf.drive, cb.drive), (1, -1));
+    assert_rel(
+        cb.no_load.v_inf.unwrap(),
+        -cf.no_load.v_inf.unwrap(),
+        1e-12,
+        "no-load speed",
+    );
+    assert_rel(cb.stall.force, -cf.stall.force, 1e-9, "stall force");
+    let (pf, pb) = (cf.max_power.unwrap(), cb.max_power.unwrap());
+    assert_rel(pb.power, pf.power, 1e-9, "largest power");
+    let (tf, tb) = (cf.transient.unwrap(), cb.transient.unwrap());
+    assert_rel(tb.initial_force, -tf.initial_force, 1e-9, "start-up force");
+    // The datasheet states magnitudes: the same for both.
+    let (sf, sb) = (
+        cf.datasheet.stall_force.unwrap(),
+        cb.datasheet.stall_force.unwrap(),
+    );
+    assert_rel(sb, sf, 1e-9, "datasheet stall force");
+    for p in &cf.points {
+        let (v, e) = v_inf_at(&backward, -p.evaluation.load);
+        let expected = -p.evaluation.v_inf.unwrap();
+        assert!(
+            (v - expected).abs() <= e + p.evaluation.error.unwrap(),
+            "F = {}",
+            p.evaluation.load
+        );
+    }
+}
+
+#[test]
+fn v_inf_does_not_increase_with_the_load() {
+    // The comparison argument (docs/model.md section 3 applied to g_t): a
+    // slider pushed harder never overtakes one pushed less.
+    let c = default_characteristic();
+    let steady: Vec<_> = c
+        .points
+        .iter()
+        .filter_map(|p| {
+            p.evaluation
+                .v_inf
+                .map(|v| (p.x, v, p.evaluation.error.unwrap_or(0.0)))
+        })
+        .collect();
+    assert!(steady.len() > 40, "{} points", steady.len());
+    for w in steady.windows(2) {
+        assert!(w[1].1 <= w[0].1 + w[0].2 + w[1].2, "{w:?}");
+    }
+    // The curve ends where the slider runs away, within [mu_d F_c, mu_0 F_c]
+    // in magnitude (docs/model.md section 9 and the holding-force argument
+    // of src/characteristic/domain.rs).
+    let m = Scene::default().motor;
+    for limit in [c.run_away_below.unwrap(), c.run_away_above.unwrap()] {
+        let f = limit.load().abs();
+        assert!(f >= m.mu_dynamic * m.contact_force * (1.0 - 1e-9) && f <= c.holding_force);
+        assert_eq!(limit.first_unsteady.regime, "run-away");
+        assert!(limit.width() <= 1e-9 * c.holding_force);
+    }
+}
+
+#[test]
+fn incline_loads_are_the_weight_component() {
+    // F = m_s g sin(theta); the paper's slider (1.4 g) weighs 0.0137 N, less
+    // than the stall force, so the drive climbs at every angle, and at rest
+    // it holds on any incline since mu_0 F_c > m_s g.
+    let sc = Scene::default();
+    let options = Options {
+        axis: LoadAxis::Incline,
+        tolerance: 0.5,
+        max_evaluations: 20,
+        ..Options::default()
+    };
+    let c = characteristic::characteristic(&sc, &options).unwrap();
+    let weight = sc.motor.slider_mass * characteristic::G;
+    for p in &c.points {
+        let f = p.evaluation.load;
+        assert!(
+            (f - weight * p.x.to_radians().sin()).abs() <= 1e-15,
+            "{p:?}"
+        );
+    }
+    let up = c
+        .points
+        .iter()
+        .find(|p| p.x == 90.0)
+        .expect("theta = 90 deg");
+    assert_eq!(up.evaluation.load, weight);
+    assert!(up.evaluation.v_inf.unwrap() > 0.0);
+    let i = c.incline.unwrap();
+    assert_eq!(i.stall_angle, None);
+    assert_eq!(i.holding_angle, 90.0);
+}
+
+fn stickslip(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn bad_input_is_one_line_naming_the_flag_or_field() {
+    let dir = scratch("characteristic", "bad_input");
+    let frictionless = dir.join("frictionless.toml");
+    std::fs::write(
+        &frictionless,
+        "[motor]\nslider_mass = 1.4e-3\ncontact_force = 1.0\nmu_static = 0.0\nmu_dynamic = 0.0\n",
+    )
+    .unwrap();
+    let frictionless = frictionless.to_str().unwrap();
+    let figure = dir.join("f.gif");
+    for (args, expected) in [
+        (
+            vec!["--tolerance", "0"],
+            "--tolerance 0: must be from 1e-6 to 0.5",
+        ),
+        (
+            vec!["--from", "0.1", "--to", "0"],
+            "--to 0: must be above --from 0.1",
+        ),
+        (
+            vec!["--load", "incline", "--from", "-100"],
+            "--from -100: must be an angle from -90 to 90 degrees",
+        ),
+        (
+            vec!["--max-evaluations", "5"],
+            "--max-evaluations 5: must be at least 20",
+        ),
+        (
+            vec![frictionless],
+            "motor.mu_static = 0: must be positive for a characteristic",
+        ),
+        (vec!["--figure", figure.to_str().unwrap()], "f.gif"),
+    ] {
+        let mut all = vec!["characteristic"];
+        all.extend(args.iter().copied());
+        let o = stickslip(&all);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{all:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{all:?}: {err}");
+        assert!(
+            err.starts_with("stickslip: ") && err.contains(expected),
+            "{all:?}: {err}"
+        );
+        assert!(o.stdout.is_empty());
+    }
+    assert!(!figure.exists());
+    // A usage error (unknown value of --load) is clap's, exit 2.
+    assert_eq!(
+        stickslip(&["characteristic", "--load", "spring"])
+            .status
+            .code(),
+        Some(2)
+    );
+}
+
+#[test]
+fn outputs_never_overwrite_the_input_or_each_other() {
+    let dir = scratch("characteristic", "outputs");
+    let scene_path = dir.join("scene.toml");
+    let text = "[signal]\nkind = \"ideal\"\nstroke = 25e-6\nkappa = 0.5\nduty = 1.0\n";
+    std::fs::write(&scene_path, text).unwrap();
+    let s = scene_path.to_str().unwrap();
+    let o = stickslip(&["characteristic", s, "-o", s]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("refusing to overwrite an input"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(std::fs::read_to_string(&scene_path).unwrap(), text);
+    let svg = dir.join("c.svg");
+    let csv = dir.join("c.csv");
+    let o = stickslip(&[
+        "characteristic",
+        s,
+        "--figure",
+        svg.to_str().unwrap(),
+        "-o",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("named as two outputs"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!svg.exists() && !csv.exists());
+    // Written: the table as CSV (by the extension), the figure and its CSV.
+    let table = dir.join("table.csv");
+    let o = stickslip(&[
+        "characteristic",
+        s,
+        "--tolerance",
+        "0.1",
+        "--figure",
+        svg.to_str().unwrap(),
+        "-o",
+        table.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let t = std::fs::read_to_string(&table).unwrap();
+    assert!(t.starts_with("# stickslip_version"), "{t}");
+    assert!(
+        t.lines()
+            .nth(2)
+            .unwrap()
+            .starts_with("load,extra_acceleration,regime,v_inf")
+    );
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
+    assert_eq!(
+        std::fs::read_to_string(&csv).unwrap(),
+        t,
+        "the figure's data is the table"
+    );
+    assert_eq!(std::fs::read_to_string(&scene_path).unwrap(), text);
+}
+
+/// Object keys at every depth.
+fn json_keys(value: &serde_json::Value, keys: &mut std::collections::BTreeSet<String>) {
+    match value {
+        serde_json::Value::Object(map) => {
+            for (key, inner) in map {
+                keys.insert(key.clone());
+                json_keys(inner, keys);
+            }
+        }
+        serde_json::Value::Array(items) => items.iter().for_each(|i| json_keys(i, keys)),
+        _ => {}
+    }
+}
+
+#[test]
+fn every_json_key_is_documented() {
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/interface.md"))
+        .expect("docs/interface.md");
+    let section = doc
+        .split("### `stickslip characteristic")
+        .nth(1)
+        .expect("docs/interface.md has a section on stickslip characteristic");
+    let dir = scratch("characteristic", "keys");
+    let held = dir.join("held.toml");
+    std::fs::write(
+        &held,
+        "[signal]\nkind = \"harmonics\"\nfrequency = 300.0\namplitudes = [12.5e-6]\nphases = [0.0]\n",
+    )
+    .unwrap();
+    let mut keys = std::collections::BTreeSet::new();
+    for args in [
+        vec!["characteristic", "--json", "--tolerance", "0.1"],
+        vec![
+            "characteristic",
+            "--json",
+            "--tolerance",
+            "0.1",
+            "--load",
+            "incline",
+        ],
+        vec![
+            "characteristic",
+            held.to_str().unwrap(),
+            "--json",
+            "--tolerance",
+            "0.1",
+        ],
+    ] {
+        let o = stickslip(&args);
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        let text = String::from_utf8(o.stdout).unwrap();
+        assert!(!text.contains("NaN"));
+        let v: serde_json::Value = serde_json::from_str(&text).expect("one JSON object");
+        json_keys(&v, &mut keys);
+    }
+    for expected in [
+        "stall",
+        "held_band",
+        "datasheet",
+        "recommended_load",
+        "unit",
+        "slope",
+    ] {
+        assert!(keys.contains(expected), "no `{expected}` printed");
+    }
+    // The scene's own keys are documented with the scene files.
+    let scene_keys: std::collections::BTreeSet<String> = {
+        let mut k = std::collections::BTreeSet::new();
+        let table: toml::Value = toml::from_str(&Scene::default().to_toml()).unwrap();
+        let v = serde_json::to_value(table).unwrap();
+        json_keys(&v, &mut k);
+        k
+    };
+    let missing: Vec<&String> = keys
+        .iter()
+        .filter(|k| !scene_keys.contains(*k) && !section.contains(&format!("`{k}`")))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "undocumented keys of characteristic --json: {missing:?}"
+    );
+}
+
+#[test]
+fn the_scene_s_own_extra_acceleration_is_replaced_by_the_load() {
+    // The load is the characteristic's axis: a scene's own g_t (here one
+    // that makes the slider run away, docs/model.md section 9) is replaced.
+    let mut sc = Scene::default();
+    sc.motor.extra_acceleration = 500.0;
+    let c = characteristic::characteristic(&sc, &coarse((0.0, 0.02))).unwrap();
+    assert_eq!(c.replaced_extra_acceleration, 500.0);
+    assert_eq!(c.no_load.extra_acceleration, 0.0);
+    assert!(matches!(
+        stickslip::simulate(&sc).unwrap(),
+        Outcome::RunAway { .. }
+    ));
+}
