@@ -409,10 +409,13 @@ impl<'s> EventEngine<'s> {
                     None => Ok(()),
                 }
             }
-            Found::Crossing { time_error, a_r } => {
-                self.zero_of_v_rel(walk, false, time_error, a_r, observer)
+            Found::Crossing { .. } | Found::Grazing => {
+                let (grazing, time_error, a_r) = match found {
+                    Found::Crossing { time_error, a_r } => (false, time_error, a_r),
+                    _ => (true, 0.0, None),
+                };
+                self.zero_of_v_rel(walk, grazing, time_error, a_r, observer)
             }
-            Found::Grazing => self.zero_of_v_rel(walk, true, 0.0, None, observer),
         }
     }
 

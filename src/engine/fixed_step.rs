@@ -446,17 +446,20 @@ impl<'s> FixedStepEngine<'s> {
             let v_rod_end = self.signal.velocity_before(next);
             let (new_mode, v1) = self.step_law(walk.mode, walk.v, v_rod_end, h);
             steps += 1;
-            // A grid cannot tell a tangency from a crossing: every change
-            // is a transition.
-            if let Some(kind) = transition(walk.mode, new_mode, false) {
+            if new_mode != walk.mode {
                 walk.uncertainty +=
                     h * self.acceleration_jump(walk.mode, new_mode, walk.v, v_rod_end, h);
                 if new_mode == Mode::Stick {
                     walk.derivative = 0.0;
                 }
                 self.close_segment(&mut walk, observer);
+                // A grid cannot tell a tangency from a crossing: every
+                // change of mode is a transition (never `None` here).
+                let kind = transition(walk.mode, new_mode, false);
                 walk.mode = new_mode;
-                self.emit(&walk, kind, observer);
+                if let Some(kind) = kind {
+                    self.emit(&walk, kind, observer);
+                }
             }
             walk.x += 0.5 * h * (walk.v + v1);
             walk.v = v1;
