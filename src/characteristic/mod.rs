@@ -14,26 +14,26 @@
 //!
 //! # What is computed
 //!
-//! Every number comes from the exact `v_inf` of [`crate::simulation`]
+//! Every number comes from the exact `v_inf` of `crate::simulation`
 //! with its error estimate (docs/model.md sections 10, 11), evaluated at
-//! chosen loads with one shared signal ([`evaluate`]):
+//! chosen loads with one shared signal (`evaluate`):
 //!
-//! * the curve, sampled where it bends ([`sampling`]), from an assisting
+//! * the curve, sampled where it bends (`sampling`), from an assisting
 //!   load through zero to the stall force and beyond (backward motion),
-//!   ended on each side where the slider runs away ([`domain`]: no steady
+//!   ended on each side where the slider runs away (`domain`: no steady
 //!   state exists beyond the holding force);
 //! * the no-load speed `v_inf(0)`;
 //! * the stall force, where `v_inf` becomes 0, to `1e-10` relative, and
-//!   the band of loads that hold the slider still, if any ([`stall`]);
+//!   the band of loads that hold the slider still, if any (`stall`);
 //! * the holding force at rest `mu_0 F_c` (closed form: a slider at rest
 //!   on a rod at rest stays while `|g_t| <= a_0`);
 //! * the largest mechanical output power `F v_inf` and its load
-//!   ([`output_power`]);
-//! * the force a start-up measurement would report ([`transient`]);
-//! * the datasheet block ([`datasheet`]);
-//! * the slope `d v_inf / d F` at every point ([`slope`]: a central
+//!   (`output_power`);
+//! * the force a start-up measurement would report (`transient`);
+//! * the datasheet block (`datasheet`);
+//! * the slope `d v_inf / d F` at every point (`slope`: a central
 //!   difference standing in for the exact derivative);
-//! * text, JSON and CSV ([`table`]).
+//! * text, JSON and CSV (`table`).
 //!
 //! Monotonicity: `v_inf` does not increase with `F` (a slider pushed harder
 //! never overtakes one pushed less on the same rod, the comparison argument
@@ -166,7 +166,7 @@ impl LoadAxis {
     }
 
     /// The whole range: `[-mu_0 F_c, mu_0 F_c]` for a force (no steady state
-    /// exists beyond, [`domain`]), `[-90, 90]` degrees on an incline.
+    /// exists beyond, `domain`), `[-90, 90]` degrees on an incline.
     pub fn default_range(self, holding_force: f64) -> (f64, f64) {
         match self {
             LoadAxis::Force => (-holding_force, holding_force),

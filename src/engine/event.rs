@@ -18,7 +18,7 @@
 //!   piece of that partition. A piece on which `|v_rel|` grows cannot hold a
 //!   zero; on a piece where it shrinks there is a zero iff `v_rel` has
 //!   changed sign at the piece's end, and then exactly one, found by
-//!   safeguarded Newton ([`super::bracket`]) to `4 eps T`. No event can be
+//!   safeguarded Newton ([`crate::numerics::bracket`]) to `4 eps T`. No event can be
 //!   missed: this is a proof, not a sampling.
 //! * **Grazing**: at the end of a shrinking piece whose next piece grows,
 //!   `v_rel` has a local extremum (a critical point of `v_rel`). If
@@ -33,8 +33,8 @@
 //!   whether `v_rel` is zero.
 //! * **What a zero of `v_rel` leads to** is decided by the band piece right
 //!   of the event time: inside the band the slider sticks, above it slips
-//!   forward, below it slips backward (docs/model.md section 1). Detection (when)
-//!   and decision (what) are separate steps.
+//!   forward, below it slips backward (docs/model.md section 1; the law is
+//!   [`super::contact`], shared with the fixed-step reference).
 //! * **The departure skip**: after an event that leaves `v_rel = 0` and
 //!   starts a slip (stick -> slip, reversal, grazing without sticking), the
 //!   root search starts at the end of the piece that holds the event. On that
@@ -46,19 +46,40 @@
 //!   in zero time; the slider's do not (friction is bounded). The new mode
 //!   follows from the sign of the new `v_rel`.
 //!
+//! ## One segment in three steps
+//! The walk through a period repeats, until the period ends:
+//!
+//! 1. **When** (detection, `event/detect.rs`): from the slider's state and
+//!    mode, find where the current segment ends and what is there, a
+//!    `SegmentEnd`: the period end, a rod jump, the end of the stuck
+//!    slider's band piece (with the band of the next piece), a transversal
+//!    zero of `v_rel` (with its time error and `a_R` there when the solver
+//!    saw it) or a grazing. Detection changes no slider state; it only
+//!    records the solver's work and its last roots (first iterates for
+//!    later periods).
+//! 2. **Move**: carry the slider to that phase in closed form and hand the
+//!    segment to the observers (if they want it).
+//! 3. **What** (decision): at the end found, decide the new mode with the
+//!    contact law, update the slider velocity, the period-map derivative and
+//!    the uncertainty bound, and hand the typed event to the observers.
+//!
 //! Time is kept as `(period index, phase in [0, T))` and the slider position
 //! relative to its position at the period start, so precision does not decay
 //! over long runs.
 
+use super::contact::{Contact, transition};
 use super::{
-    Direction, Event, EventKind, Kinematics, Mode, PeriodEngine, PeriodStart, Segment, WorkCounters,
+    Direction, Event, EventKind, Kinematics, Mode, PeriodEngine, PeriodStart, WorkCounters,
 };
 use super::{Observer, PeriodEnd};
 use crate::error::SimulationError;
 use crate::motor::Motor;
-use crate::numerics::bracket;
-use crate::signal::{Partition, RodState, Signal};
-use std::cmp::Ordering;
+use crate::signal::{RodState, Signal};
+use detect::{Found, SlipPieces, band_pieces};
+
+pub(crate) use super::contact::Band;
+
+mod detect;
 
 /// Tolerances and limits of the event engine.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -82,17 +103,6 @@ impl Default for EventOptions {
     }
 }
 
-/// Where `a_R` lies relative to the stick band.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Band {
-    /// `a_R < a_0^-`.
-    Below,
-    /// `a_0^- <= a_R <= a_0^+`.
-    Inside,
-    /// `a_R > a_0^+`.
-    Above,
-}
-
 /// A piece of the period with one [`Band`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BandPiece {
@@ -109,38 +119,21 @@ pub struct BandPiece {
 pub struct EventEngine<'s> {
     signal: &'s Signal,
     period: f64,
-    slip_forward: (Partition, f64),
-    slip_backward: (Partition, f64),
+    slip_forward: SlipPieces,
+    slip_backward: SlipPieces,
     band: Vec<BandPiece>,
     jump: Option<f64>,
-    tol_v: f64,
+    /// The friction law, with the zero-velocity tolerance `tol_v`.
+    contact: Contact,
     tol_x: f64,
     tol_t: f64,
     tol_f: f64,
-    /// The last two roots found on each piece: events recur at nearly the
-    /// same phase every period, drifting smoothly while the motion settles,
-    /// so their linear extrapolation is the best first iterate.
-    hints_forward: Vec<[f64; 2]>,
-    hints_backward: Vec<[f64; 2]>,
     max_events: u64,
     /// Rod state at phase 0 (right limit) and at the period end (left limit).
     rod_at_start: RodState,
     rod_at_end: RodState,
     counters: WorkCounters,
     last_uncertainty: f64,
-}
-
-/// How a slip phase ended.
-enum SlipEnd {
-    /// Transversal zero of `v_rel` at this phase, known to within the
-    /// second value (s), with `a_R` there if the solver saw it.
-    Crossing(f64, f64, Option<f64>),
-    /// Tangential touch at this critical point.
-    Grazing(f64),
-    /// A rod jump at this phase.
-    Jump(f64),
-    /// The period ended.
-    PeriodEnd,
 }
 
 impl<'s> EventEngine<'s> {
@@ -176,13 +169,11 @@ impl<'s> EventEngine<'s> {
         Self {
             signal,
             period,
-            hints_forward: vec![[f64::NAN; 2]; fwd.pieces.len()],
-            hints_backward: vec![[f64::NAN; 2]; bwd.pieces.len()],
-            slip_forward: (fwd, a_fwd),
-            slip_backward: (bwd, a_bwd),
+            slip_forward: SlipPieces::new(fwd),
+            slip_backward: SlipPieces::new(bwd),
             band,
             jump,
-            tol_v: options.velocity_tolerance * v_scale,
+            contact: Contact::new(motor, options.velocity_tolerance * v_scale),
             tol_x: options.velocity_tolerance * v_scale * period,
             tol_t: options.time_tolerance * period,
             tol_f: 4.0 * f64::EPSILON * v_scale,
@@ -206,7 +197,7 @@ impl<'s> EventEngine<'s> {
 
     /// The zero-velocity tolerance `tol_v` in m/s.
     pub fn velocity_tolerance(&self) -> f64 {
-        self.tol_v
+        self.contact.tol_v
     }
 
     fn band_at(&self, tau: f64) -> (usize, Band) {
@@ -219,17 +210,7 @@ impl<'s> EventEngine<'s> {
 
     /// The mode after `v_rel` takes the value `v_rel` at phase `tau`.
     fn mode_for(&self, v_rel: f64, tau: f64) -> Mode {
-        if v_rel.abs() <= self.tol_v {
-            match self.band_at(tau).1 {
-                Band::Inside => Mode::Stick,
-                Band::Above => Mode::Slip(Direction::Forward),
-                Band::Below => Mode::Slip(Direction::Backward),
-            }
-        } else if v_rel > 0.0 {
-            Mode::Slip(Direction::Forward)
-        } else {
-            Mode::Slip(Direction::Backward)
-        }
+        self.contact.mode(v_rel, || self.band_at(tau).1)
     }
 
     fn is_jump(&self, tau: f64) -> bool {
@@ -258,10 +239,20 @@ impl<'s> EventEngine<'s> {
             if walk.tau >= self.period {
                 break;
             }
-            match walk.mode {
-                Mode::Stick => self.stick(&mut walk, observer)?,
-                Mode::Slip(dir) => self.slip(&mut walk, dir, observer)?,
-            }
+            // When, move, what (module doc).
+            let end = match walk.mode {
+                Mode::Stick => {
+                    let end = self.find_stick_end(walk.tau);
+                    self.follow_rod(&mut walk, end.at, observer);
+                    end
+                }
+                Mode::Slip(dir) => {
+                    let end = self.find_slip_end(&walk, dir);
+                    self.slide(&mut walk, dir, end.at, observer);
+                    end
+                }
+            };
+            self.decide(&mut walk, end.found, observer)?;
         }
         self.counters.periods += 1;
         self.last_uncertainty = walk.uncertainty;
@@ -284,7 +275,7 @@ impl<'s> EventEngine<'s> {
     ) -> Result<(), SimulationError> {
         let rod0 = self.rod_at_start;
         let (jumps, rod_before) = if walk.period == 1 {
-            let jumps = rod0.x.abs() > self.tol_x || rod0.v.abs() > self.tol_v;
+            let jumps = rod0.x.abs() > self.tol_x || rod0.v.abs() > self.contact.tol_v;
             (jumps, Default::default())
         } else {
             (self.is_jump(0.0), self.rod_at_end)
@@ -296,7 +287,7 @@ impl<'s> EventEngine<'s> {
         };
         let mode = self.mode_for(v_rel, 0.0);
         walk.mode = mode;
-        walk.departure = v_rel.abs() <= self.tol_v;
+        walk.departure = self.contact.at_rest(v_rel);
         if mode == Mode::Stick {
             walk.uncertainty += (rod0.v - walk.v).abs();
             walk.v = rod0.v;
@@ -315,6 +306,8 @@ impl<'s> EventEngine<'s> {
         Ok(())
     }
 
+    /// Hands an event at the walk's phase to the observer; too many in one
+    /// period stop the run.
     fn emit<O: Observer>(
         &mut self,
         walk: &mut Walk,
@@ -338,71 +331,92 @@ impl<'s> EventEngine<'s> {
         Ok(())
     }
 
-    /// A stuck slider: follow the rod to the end of the band piece.
-    fn stick<O: Observer>(
+    /// Moves a stuck slider with the rod to `end`, handing the stick
+    /// segment to the observer.
+    fn follow_rod<O: Observer>(&self, walk: &mut Walk, end: f64, observer: &mut O) {
+        if end <= walk.tau {
+            return;
+        }
+        let rod_start = self.signal.state(walk.tau);
+        let rod_end = self.signal.state_before(end);
+        let dx = rod_end.x - rod_start.x;
+        if observer.wants_segments() {
+            let slider = [
+                Kinematics {
+                    x: walk.x,
+                    v: rod_start.v,
+                },
+                Kinematics {
+                    x: walk.x + dx,
+                    v: rod_end.v,
+                },
+            ];
+            let segment = self.contact.segment(
+                walk.period,
+                [walk.tau, end],
+                Mode::Stick,
+                slider,
+                [rod_start, rod_end],
+            );
+            observer.segment(&segment, self.signal);
+        }
+        walk.x += dx;
+        walk.v = rod_end.v;
+        walk.tau = end;
+    }
+
+    /// Moves a sliding slider in closed form to `end`, handing the slip
+    /// segment to the observer.
+    fn slide<O: Observer>(&self, walk: &mut Walk, dir: Direction, end: f64, observer: &mut O) {
+        let a_s = self.contact.slip_acceleration(dir);
+        let (tau0, x0, v0) = (walk.tau, walk.x, walk.v);
+        let dt = end - tau0;
+        let x1 = x0 + v0 * dt + 0.5 * a_s * dt * dt;
+        let v1 = v0 + a_s * dt;
+        if end > tau0 && observer.wants_slip_segments() {
+            let rod = [self.signal.state(tau0), self.signal.state_before(end)];
+            let slider = [Kinematics { x: x0, v: v0 }, Kinematics { x: x1, v: v1 }];
+            let segment = self
+                .contact
+                .segment(walk.period, [tau0, end], walk.mode, slider, rod);
+            observer.segment(&segment, self.signal);
+        }
+        walk.tau = end;
+        walk.x = x1;
+        walk.v = v1;
+        walk.departure = false;
+    }
+
+    /// What happens at the end of a segment, at the walk's phase.
+    fn decide<O: Observer>(
         &mut self,
         walk: &mut Walk,
+        found: Found,
         observer: &mut O,
     ) -> Result<(), SimulationError> {
-        let (i, band) = self.band_at(walk.tau);
-        let end = if band == Band::Inside {
-            self.band[i].end
-        } else {
-            walk.tau
-        };
-        if end > walk.tau {
-            let rod_start = self.signal.state(walk.tau);
-            let rod_end = self.signal.state_before(end);
-            let dx = rod_end.x - rod_start.x;
-            if observer.wants_segments() {
-                let segment = Segment {
-                    period: walk.period,
-                    start: walk.tau,
-                    end,
-                    mode: Mode::Stick,
-                    slider_start: Kinematics {
-                        x: walk.x,
-                        v: rod_start.v,
-                    },
-                    slider_end: Kinematics {
-                        x: walk.x + dx,
-                        v: rod_end.v,
-                    },
-                    rod_start: Kinematics {
-                        x: rod_start.x,
-                        v: rod_start.v,
-                    },
-                    rod_end: Kinematics {
-                        x: rod_end.x,
-                        v: rod_end.v,
-                    },
-                    slip_acceleration: 0.0,
-                };
-                observer.segment(&segment, self.signal);
+        match found {
+            Found::PeriodEnd => Ok(()),
+            Found::Jump => self.jump(walk, observer),
+            Found::BandEnd(next) => {
+                // A stuck slider stays stuck while a_R stays in the band.
+                let mode = next.mode_at_rest();
+                match transition(walk.mode, mode, false) {
+                    Some(kind) => {
+                        walk.mode = mode;
+                        walk.departure = true;
+                        self.emit(walk, kind, observer)
+                    }
+                    None => Ok(()),
+                }
             }
-            walk.x += dx;
-            walk.v = rod_end.v;
-            walk.tau = end;
+            Found::Crossing { .. } | Found::Grazing => {
+                let (grazing, time_error, a_r) = match found {
+                    Found::Crossing { time_error, a_r } => (false, time_error, a_r),
+                    _ => (true, 0.0, None),
+                };
+                self.zero_of_v_rel(walk, grazing, time_error, a_r, observer)
+            }
         }
-        if walk.tau >= self.period {
-            return Ok(());
-        }
-        if self.is_jump(walk.tau) {
-            return self.jump(walk, observer);
-        }
-        let next = if band == Band::Inside {
-            self.band.get(i + 1).map_or(Band::Inside, |p| p.band)
-        } else {
-            band
-        };
-        let to = match next {
-            Band::Above => Direction::Forward,
-            Band::Below => Direction::Backward,
-            Band::Inside => return Ok(()),
-        };
-        walk.mode = Mode::Slip(to);
-        walk.departure = true;
-        self.emit(walk, EventKind::StickToSlip { to }, observer)
     }
 
     /// A rod jump at the current phase (inside the period).
@@ -416,7 +430,7 @@ impl<'s> EventEngine<'s> {
         let v_rel = after.v - walk.v;
         let mode = self.mode_for(v_rel, walk.tau);
         walk.mode = mode;
-        walk.departure = v_rel.abs() <= self.tol_v;
+        walk.departure = self.contact.at_rest(v_rel);
         if mode == Mode::Stick {
             walk.v = after.v;
             walk.map_derivative = 0.0;
@@ -429,193 +443,52 @@ impl<'s> EventEngine<'s> {
         self.emit(walk, kind, observer)
     }
 
-    /// A sliding slider: find the next zero of `v_rel`, a jump, or the
-    /// period end.
-    fn slip<O: Observer>(
+    /// A zero of `v_rel` at the walk's phase ends a slip: the band right of
+    /// it decides the new mode (a tangency if `grazing`); the phase is
+    /// known to within `time_error`, `a_r` is `a_R` there if already known.
+    fn zero_of_v_rel<O: Observer>(
         &mut self,
         walk: &mut Walk,
-        dir: Direction,
+        grazing: bool,
+        time_error: f64,
+        a_r: Option<f64>,
         observer: &mut O,
     ) -> Result<(), SimulationError> {
-        let signal = self.signal;
-        let (part, a_s, hints) = match dir {
-            Direction::Forward => (
-                &self.slip_forward.0,
-                self.slip_forward.1,
-                &mut self.hints_forward,
-            ),
-            Direction::Backward => (
-                &self.slip_backward.0,
-                self.slip_backward.1,
-                &mut self.hints_backward,
-            ),
-        };
-        let d = dir.sign();
-        // |v_rel| shrinks where d (a_R - a_s) < 0.
-        let approaching = match dir {
-            Direction::Forward => Ordering::Less,
-            Direction::Backward => Ordering::Greater,
-        };
-        let (tau0, x0, v0) = (walk.tau, walk.x, walk.v);
-        // d * v_rel on the slip phase: at a piece end the rod's left limit,
-        // at a piece start its right limit (they differ at a rod jump).
-        let f_end_of = |t: f64| d * (signal.velocity_before(t) - (v0 + a_s * (t - tau0)));
-        let f_start_of = |t: f64| d * (signal.velocity(t) - (v0 + a_s * (t - tau0)));
-        let first = part.locate(tau0);
-        let mut evaluations = 0u64;
-        let mut iterations = 0u64;
-        let mut j = first;
-        let outcome = loop {
-            let piece = part.pieces[j];
-            let end = piece.end;
-            let at_period_end = end >= self.period;
-            let jump_here = !at_period_end && self.jump == Some(end);
-            let departure_piece = walk.departure && j == first;
-            if piece.sign == approaching && !departure_piece {
-                let f_end = f_end_of(end);
-                evaluations += 1;
-                let next_sign = if at_period_end {
-                    part.pieces[0].sign
-                } else {
-                    part.pieces[j + 1].sign
-                };
-                let turns = next_sign != approaching
-                    && !jump_here
-                    && !(at_period_end && self.jump == Some(0.0));
-                if f_end.abs() <= self.tol_v && turns {
-                    break SlipEnd::Grazing(end);
-                }
-                if f_end < 0.0 {
-                    let lo = piece.start.max(tau0);
-                    let f_lo = f_start_of(lo);
-                    evaluations += 1;
-                    if f_lo <= 0.0 {
-                        break SlipEnd::Crossing(lo, 0.0, None);
-                    }
-                    let root = bracket::solve(
-                        |t| {
-                            let (v_r, a_r) = signal.velocity_acceleration(t);
-                            (d * (v_r - (v0 + a_s * (t - tau0))), d * (a_r - a_s))
-                        },
-                        (lo, end),
-                        (f_lo, f_end),
-                        self.tol_t,
-                        self.tol_f,
-                        extrapolate(hints[j]),
-                    );
-                    hints[j] = [hints[j][1], root.t];
-                    iterations += u64::from(root.iterations);
-                    evaluations += u64::from(root.iterations);
-                    // f' = d (a_R - a_s) at the solver's last point.
-                    let a_r = root
-                        .derivative
-                        .is_finite()
-                        .then_some(d * root.derivative + a_s);
-                    break SlipEnd::Crossing(root.t, root.bracket, a_r);
-                }
+        let t = walk.tau;
+        let mode = self.mode_for(0.0, t);
+        let old = walk.mode;
+        walk.mode = mode;
+        let a_r = a_r.unwrap_or_else(|| self.signal.acceleration(t));
+        let a_old = self.contact.acceleration(old, a_r);
+        let a_new = self.contact.acceleration(mode, a_r);
+        // An event time off by dt leaves the slider with the old
+        // acceleration for dt too long or too short: its velocity is off by
+        // |a_old - a_new| dt.
+        walk.uncertainty += (a_old - a_new).abs() * time_error;
+        match mode {
+            Mode::Stick => {
+                let v_rod = self.signal.velocity(t);
+                walk.uncertainty += (v_rod - walk.v).abs();
+                walk.v = v_rod;
+                walk.map_derivative = 0.0;
             }
-            if at_period_end {
-                break SlipEnd::PeriodEnd;
-            }
-            if jump_here {
-                break SlipEnd::Jump(end);
-            }
-            j += 1;
-        };
-        self.counters.evaluations += evaluations;
-        self.counters.root_iterations += iterations;
-        let end = match outcome {
-            SlipEnd::Crossing(t, _, _) | SlipEnd::Grazing(t) | SlipEnd::Jump(t) => t,
-            SlipEnd::PeriodEnd => self.period,
-        };
-        // Closed-form slip segment [tau0, end].
-        let dt = end - tau0;
-        let x1 = x0 + v0 * dt + 0.5 * a_s * dt * dt;
-        let v1 = v0 + a_s * dt;
-        if end > tau0 && observer.wants_slip_segments() {
-            let rod_start = signal.state(tau0);
-            let rod_end = signal.state_before(end);
-            let segment = Segment {
-                period: walk.period,
-                start: tau0,
-                end,
-                mode: walk.mode,
-                slider_start: Kinematics { x: x0, v: v0 },
-                slider_end: Kinematics { x: x1, v: v1 },
-                rod_start: Kinematics {
-                    x: rod_start.x,
-                    v: rod_start.v,
-                },
-                rod_end: Kinematics {
-                    x: rod_end.x,
-                    v: rod_end.v,
-                },
-                slip_acceleration: a_s,
-            };
-            observer.segment(&segment, signal);
-        }
-        walk.tau = end;
-        walk.x = x1;
-        walk.v = v1;
-        walk.departure = false;
-        match outcome {
-            SlipEnd::PeriodEnd => Ok(()),
-            SlipEnd::Jump(_) => self.jump(walk, observer),
-            SlipEnd::Crossing(t, _, _) | SlipEnd::Grazing(t) => {
-                let (grazing, time_error, a_r_seen) = match outcome {
-                    SlipEnd::Crossing(_, e, a) => (false, e, a),
-                    _ => (true, 0.0, None),
-                };
-                let mode = self.mode_for(0.0, t);
-                let old = walk.mode;
-                walk.mode = mode;
-                let a_r = a_r_seen.unwrap_or_else(|| signal.acceleration(t));
-                let a_new = match mode {
-                    Mode::Stick => a_r,
-                    Mode::Slip(Direction::Forward) => self.slip_forward.1,
-                    Mode::Slip(Direction::Backward) => self.slip_backward.1,
-                };
-                // An event time off by dt leaves the slider with the old
-                // acceleration for dt too long or too short: its velocity is
-                // off by |a_old - a_new| dt.
-                walk.uncertainty += (a_s - a_new).abs() * time_error;
-                match mode {
-                    Mode::Stick => {
-                        let v_rod = signal.velocity(t);
-                        walk.uncertainty += (v_rod - walk.v).abs();
-                        walk.v = v_rod;
-                        walk.map_derivative = 0.0;
-                    }
-                    Mode::Slip(new_dir) => {
-                        walk.departure = true;
-                        if new_dir != dir {
-                            // Perturbation of the crossing time carries over
-                            // as dv_after = dv (a_R - a_new) / (a_R - a_old).
-                            walk.map_derivative *= (a_r - a_new) / (a_r - a_s);
-                        }
-                    }
+            Mode::Slip(_) => {
+                walk.departure = true;
+                if mode != old {
+                    // Perturbation of the crossing time carries over as
+                    // dv_after = dv (a_R - a_new) / (a_R - a_old).
+                    walk.map_derivative *= (a_r - a_new) / (a_r - a_old);
                 }
-                if grazing {
-                    // Sticking or sliding on is decided within tol_v: the
-                    // two outcomes differ by a finite amount, so no bound on
-                    // the velocity error holds through a grazing.
-                    walk.uncertainty = f64::INFINITY;
-                }
-                let kind =
-                    transition(old, mode, grazing).unwrap_or(EventKind::Grazing { then: mode });
-                self.emit(walk, kind, observer)
             }
         }
-    }
-}
-
-/// The first iterate from the last two roots on a piece: their linear
-/// extrapolation, or the last root alone.
-fn extrapolate([before, last]: [f64; 2]) -> Option<f64> {
-    match (before.is_finite(), last.is_finite()) {
-        (true, true) => Some(2.0 * last - before),
-        (_, true) => Some(last),
-        _ => None,
+        if grazing {
+            // Sticking or sliding on is decided within tol_v: the two
+            // outcomes differ by a finite amount, so no bound on the
+            // velocity error holds through a grazing.
+            walk.uncertainty = f64::INFINITY;
+        }
+        let kind = transition(old, mode, grazing).unwrap_or(EventKind::Grazing { then: mode });
+        self.emit(walk, kind, observer)
     }
 }
 
@@ -634,53 +507,6 @@ struct Walk {
     /// `v_rel = 0` at `tau` and the mode is a slip leaving zero: the piece
     /// holding `tau` is the departure piece and is not searched.
     departure: bool,
-}
-
-/// The event a change of mode at a zero of `v_rel` is; `None` if the mode
-/// does not change and it was no tangency.
-fn transition(old: Mode, new: Mode, grazing: bool) -> Option<EventKind> {
-    if grazing {
-        return Some(EventKind::Grazing { then: new });
-    }
-    match (old, new) {
-        (Mode::Stick, Mode::Stick) => None,
-        (Mode::Stick, Mode::Slip(to)) => Some(EventKind::StickToSlip { to }),
-        (Mode::Slip(_), Mode::Stick) => Some(EventKind::SlipToStick),
-        (Mode::Slip(a), Mode::Slip(b)) if a != b => Some(EventKind::Reversal { to: b }),
-        (Mode::Slip(_), Mode::Slip(_)) => None,
-    }
-}
-
-/// Merges the partitions of `a_R - a_0^+` and `a_R - a_0^-` into band
-/// pieces; a jump phase always stays a piece boundary.
-fn band_pieces(plus: &Partition, minus: &Partition, jump: Option<f64>) -> Vec<BandPiece> {
-    let mut knots: Vec<f64> = plus
-        .pieces
-        .iter()
-        .chain(&minus.pieces)
-        .map(|p| p.start)
-        .collect();
-    let period = plus.pieces.last().map_or(0.0, |p| p.end);
-    knots.sort_by(f64::total_cmp);
-    knots.dedup();
-    knots.push(period);
-    let mut pieces: Vec<BandPiece> = Vec::with_capacity(knots.len());
-    for w in knots.windows(2) {
-        let (start, end) = (w[0], w[1]);
-        let mid = 0.5 * (start + end);
-        let band = if plus.pieces[plus.locate(mid)].sign == Ordering::Greater {
-            Band::Above
-        } else if minus.pieces[minus.locate(mid)].sign == Ordering::Less {
-            Band::Below
-        } else {
-            Band::Inside
-        };
-        match pieces.last_mut() {
-            Some(last) if last.band == band && jump != Some(start) => last.end = end,
-            _ => pieces.push(BandPiece { start, end, band }),
-        }
-    }
-    pieces
 }
 
 impl PeriodEngine for EventEngine<'_> {
@@ -702,7 +528,7 @@ impl PeriodEngine for EventEngine<'_> {
     }
 
     fn zero_velocity_tolerance(&self) -> f64 {
-        self.tol_v
+        self.contact.tol_v
     }
 
     fn last_velocity_uncertainty(&self) -> Option<f64> {

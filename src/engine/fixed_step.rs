@@ -85,7 +85,7 @@
 //!   `StickToSlip` one node apart, and a stick time of `h` per such event.
 //!
 //! ## What it reports
-//! The same [`Segment`]s, [`Event`]s and period ends as the event engine, so
+//! The same [`Segment`](super::Segment)s, [`Event`]s and period ends as the event engine, so
 //! every observer and indicator works unchanged:
 //!
 //! * consecutive steps of equal mode are merged into one segment; a slip
@@ -114,10 +114,13 @@
 //!
 //! A slider whose `|v_rel|` at a period start (or after a rod jump) is at
 //! most `tol_v = velocity_tolerance x max |v_R|` counts as resting on the
-//! rod, as in the event engine.
+//! rod, as in the event engine: that decision, the event kind of a mode
+//! change and the segments come from the shared [contact law](super::contact);
+//! the step law above is the scheme's own.
 
+use super::contact::{Contact, transition};
 use super::{
-    Direction, Event, EventKind, Kinematics, Mode, PeriodEngine, PeriodStart, Segment, WorkCounters,
+    Direction, Event, EventKind, Kinematics, Mode, PeriodEngine, PeriodStart, WorkCounters,
 };
 use super::{Observer, PeriodEnd};
 use crate::error::SimulationError;
@@ -158,11 +161,8 @@ pub struct FixedStepEngine<'s> {
     inner_jump: Option<f64>,
     /// The rod jumps at phase 0 from period 2 on (continuous ideal signal).
     jump_at_start: bool,
-    a_plus: f64,
-    a_minus: f64,
-    a_forward: f64,
-    a_backward: f64,
-    tol_v: f64,
+    /// The friction law, with the zero-velocity tolerance `tol_v`.
+    contact: Contact,
     rod_at_start: RodState,
     rod_at_end: RodState,
     last_uncertainty: f64,
@@ -210,11 +210,7 @@ impl<'s> FixedStepEngine<'s> {
             h: period / steps as f64,
             inner_jump: jump.filter(|t| *t > 0.0 && *t < period),
             jump_at_start: jump == Some(0.0),
-            a_plus: motor.a_0_plus(),
-            a_minus: motor.a_0_minus(),
-            a_forward: motor.slip_forward_acceleration(),
-            a_backward: motor.slip_backward_acceleration(),
-            tol_v: options.velocity_tolerance * v_scale,
+            contact: Contact::new(motor, options.velocity_tolerance * v_scale),
             rod_at_start: signal.state(0.0),
             rod_at_end: signal.state_before(period),
             last_uncertainty: 0.0,
@@ -256,20 +252,8 @@ impl<'s> FixedStepEngine<'s> {
     /// (right limit): slip in the direction of `v_rel`, or, within the
     /// zero-velocity tolerance, the mode the band of `a_R(tau+)` gives.
     fn mode_for(&self, v_rel: f64, tau: f64) -> Mode {
-        if v_rel.abs() <= self.tol_v {
-            let a = self.signal.state(tau).a;
-            if a > self.a_plus {
-                Mode::Slip(Direction::Forward)
-            } else if a < self.a_minus {
-                Mode::Slip(Direction::Backward)
-            } else {
-                Mode::Stick
-            }
-        } else if v_rel > 0.0 {
-            Mode::Slip(Direction::Forward)
-        } else {
-            Mode::Slip(Direction::Backward)
-        }
+        self.contact
+            .mode(v_rel, || self.contact.band(self.signal.state(tau).a))
     }
 
     /// One step of the scheme (module doc): the mode on the step and the
@@ -281,10 +265,11 @@ impl<'s> FixedStepEngine<'s> {
         // a_req is a difference quotient of velocities: within tol_v / h of
         // the band it counts as inside (a_R = a_0 exactly, as in the ideal
         // signal at kappa = 1, must not slip on rounding).
-        let tol_a = self.tol_v / h;
-        let (a_plus, a_minus) = (self.a_plus + tol_a, self.a_minus - tol_a);
-        let forward = (Mode::Slip(Direction::Forward), v + h * self.a_forward);
-        let backward = (Mode::Slip(Direction::Backward), v + h * self.a_backward);
+        let c = &self.contact;
+        let tol_a = c.tol_v / h;
+        let (a_plus, a_minus) = (c.a_plus + tol_a, c.a_minus - tol_a);
+        let forward = (Mode::Slip(Direction::Forward), v + h * c.a_forward);
+        let backward = (Mode::Slip(Direction::Backward), v + h * c.a_backward);
         let stick = (Mode::Stick, v_rod_end);
         match mode {
             Mode::Stick => {
@@ -323,10 +308,7 @@ impl<'s> FixedStepEngine<'s> {
     /// is `a_req`; a step that ends in stick ends exactly on the rod
     /// velocity, so it adds no velocity error.
     fn acceleration_jump(&self, old: Mode, new: Mode, v: f64, v_rod_end: f64, h: f64) -> f64 {
-        let slip = |d: Direction| match d {
-            Direction::Forward => self.a_forward,
-            Direction::Backward => self.a_backward,
-        };
+        let slip = |d: Direction| self.contact.slip_acceleration(d);
         match (old, new) {
             (_, Mode::Stick) => 0.0,
             (Mode::Stick, Mode::Slip(d)) => (slip(d) - (v_rod_end - v) / h).abs(),
@@ -349,30 +331,17 @@ impl<'s> FixedStepEngine<'s> {
         if walk.tau > walk.segment_start && observer.wants_segments() {
             let rod_start = self.signal.state(walk.segment_start);
             let rod_end = self.signal.state_before(walk.tau);
-            let segment = Segment {
-                period: walk.period,
-                start: walk.segment_start,
-                end: walk.tau,
-                mode: walk.mode,
-                slider_start: walk.segment_slider,
-                slider_end: Kinematics {
-                    x: walk.x,
-                    v: walk.v,
-                },
-                rod_start: Kinematics {
-                    x: rod_start.x,
-                    v: rod_start.v,
-                },
-                rod_end: Kinematics {
-                    x: rod_end.x,
-                    v: rod_end.v,
-                },
-                slip_acceleration: match walk.mode {
-                    Mode::Stick => 0.0,
-                    Mode::Slip(Direction::Forward) => self.a_forward,
-                    Mode::Slip(Direction::Backward) => self.a_backward,
-                },
+            let slider_end = Kinematics {
+                x: walk.x,
+                v: walk.v,
             };
+            let segment = self.contact.segment(
+                walk.period,
+                [walk.segment_start, walk.tau],
+                walk.mode,
+                [walk.segment_slider, slider_end],
+                [rod_start, rod_end],
+            );
             observer.segment(&segment, self.signal);
         }
         walk.segment_start = walk.tau;
@@ -411,7 +380,7 @@ impl<'s> FixedStepEngine<'s> {
         let rod0 = self.rod_at_start;
         let jumps = if period == 1 {
             // From rest: the rod starts at x_R = 0, v_R = 0.
-            rod0.x.abs() > self.tol_v * self.period || rod0.v.abs() > self.tol_v
+            rod0.x.abs() > self.contact.tol_v * self.period || rod0.v.abs() > self.contact.tol_v
         } else {
             self.jump_at_start
         };
@@ -484,9 +453,13 @@ impl<'s> FixedStepEngine<'s> {
                     walk.derivative = 0.0;
                 }
                 self.close_segment(&mut walk, observer);
-                let kind = transition(walk.mode, new_mode);
+                // A grid cannot tell a tangency from a crossing: every
+                // change of mode is a transition (never `None` here).
+                let kind = transition(walk.mode, new_mode, false);
                 walk.mode = new_mode;
-                self.emit(&walk, kind, observer);
+                if let Some(kind) = kind {
+                    self.emit(&walk, kind, observer);
+                }
             }
             walk.x += 0.5 * h * (walk.v + v1);
             walk.v = v1;
@@ -516,16 +489,6 @@ impl<'s> FixedStepEngine<'s> {
     }
 }
 
-/// The event a change of mode on the grid is.
-fn transition(old: Mode, new: Mode) -> EventKind {
-    match (old, new) {
-        (Mode::Slip(_), Mode::Stick) => EventKind::SlipToStick,
-        (Mode::Stick, Mode::Slip(to)) => EventKind::StickToSlip { to },
-        (_, Mode::Slip(to)) => EventKind::Reversal { to },
-        (Mode::Stick, Mode::Stick) => unreachable!("no mode change"),
-    }
-}
-
 impl PeriodEngine for FixedStepEngine<'_> {
     fn signal(&self) -> &Signal {
         self.signal
@@ -545,7 +508,7 @@ impl PeriodEngine for FixedStepEngine<'_> {
     }
 
     fn zero_velocity_tolerance(&self) -> f64 {
-        self.tol_v
+        self.contact.tol_v
     }
 
     /// The velocity error the grid introduced in the last period, `sum h

@@ -4,6 +4,10 @@
 //!   transition and every zero of the relative velocity by root finding on
 //!   the analytic signal and moves the slider in closed form between them.
 //! * [`fixed_step`]: the fixed-step reference (first-order Moreau-Jean).
+//! * [`contact`]: the friction law both share: the band of `a_R`, the mode
+//!   a relative velocity leads to, the event a change of mode is, and the
+//!   segment handed to observers. Each engine only finds *when* a change
+//!   happens.
 //! * [`observer`]: what an engine hands its observers, and the period end
 //!   it reports.
 //!
@@ -15,6 +19,7 @@ use crate::error::SimulationError;
 use crate::signal::Signal;
 pub use observer::{Observer, PeriodEnd};
 
+pub(crate) mod contact;
 pub(crate) mod event;
 pub(crate) mod fixed_step;
 pub(crate) mod observer;

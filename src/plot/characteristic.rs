@@ -10,7 +10,7 @@
 //! over the loads the drive works against (0 to the stall force), with its
 //! maximum and the recommended load (half the stall force). The note
 //! states the sign convention and the datasheet numbers. The CSV beside
-//! the figure is the characteristic's table ([`table::to_csv`]).
+//! the figure is the characteristic's table (`table::to_csv`).
 
 use super::axes::tick_label;
 use super::style::{Dash, GREY, Marker, PALETTE};

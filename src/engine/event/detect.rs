@@ -1,0 +1,302 @@
+//! Detection for the [event engine](super): *when* the current segment
+//! ends and what is there, as a [`SegmentEnd`]. Nothing here changes the
+//! slider's state; the slip search records the solver's work and its last
+//! roots.
+//!
+//! * A stuck slider follows the rod to the end of its band piece
+//!   ([`BandPiece`], from the partitions of `a_R = a_0^+` and
+//!   `a_R = a_0^-`); there it meets the band of the next piece, a rod jump
+//!   or the period end.
+//! * A sliding slider with acceleration `a_s` has `v_rel` monotone on every
+//!   piece of the partition of `a_R = a_s`. The search walks these pieces
+//!   from the slider's phase (skipping the departure piece) and stops at
+//!   the first of: a grazing at the end of a piece where `|v_rel|` shrinks
+//!   and then grows, with `|v_rel| <= tol_v` there; a transversal zero on a
+//!   shrinking piece whose end value has changed sign (found by
+//!   [`bracket::solve`]); a rod jump; the period end (module doc of
+//!   [`super`]).
+
+use super::{Band, BandPiece, EventEngine, Walk};
+use crate::engine::Direction;
+use crate::numerics::bracket;
+use crate::signal::{Partition, Signal};
+use std::cmp::Ordering;
+
+/// The partition of the period by `a_R = a_s` for one slip direction, with
+/// the last two roots found on each piece (first iterates for the solver).
+#[derive(Debug, Clone)]
+pub(super) struct SlipPieces {
+    partition: Partition,
+    hints: Vec<[f64; 2]>,
+}
+
+impl SlipPieces {
+    pub(super) fn new(partition: Partition) -> Self {
+        let hints = vec![[f64::NAN; 2]; partition.pieces.len()];
+        Self { partition, hints }
+    }
+}
+
+/// Where a segment ends and what detection found there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct SegmentEnd {
+    /// Phase of the end (s).
+    pub(super) at: f64,
+    /// What is there.
+    pub(super) found: Found,
+}
+
+/// What ends a segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Found {
+    /// The period ends.
+    PeriodEnd,
+    /// The rod jumps.
+    Jump,
+    /// A stuck slider reaches the end of its band piece; `a_R` lies in this
+    /// band on the next piece.
+    BandEnd(Band),
+    /// A transversal zero of `v_rel`, its phase known to within
+    /// `time_error` (s), with `a_R` there if the solver saw it.
+    Crossing {
+        /// Bound on the error of the phase (s).
+        time_error: f64,
+        /// `a_R` at the zero, from the solver's last derivative.
+        a_r: Option<f64>,
+    },
+    /// `v_rel` touches zero at a critical point.
+    Grazing,
+}
+
+/// `d v_rel` along a slip from `(tau0, v0)` with slider acceleration `a_s`
+/// in the direction of sign `d`: positive while the slip lasts.
+#[derive(Debug, Clone, Copy)]
+struct SlipGap {
+    tau0: f64,
+    v0: f64,
+    a_s: f64,
+    d: f64,
+}
+
+impl SlipGap {
+    /// At a piece end: the rod's left limit.
+    #[inline]
+    fn before(&self, signal: &Signal, t: f64) -> f64 {
+        self.d * (signal.velocity_before(t) - (self.v0 + self.a_s * (t - self.tau0)))
+    }
+
+    /// At a piece start: the rod's right limit (they differ at a rod jump).
+    #[inline]
+    fn after(&self, signal: &Signal, t: f64) -> f64 {
+        self.d * (signal.velocity(t) - (self.v0 + self.a_s * (t - self.tau0)))
+    }
+
+    /// The gap and its derivative `d (a_R - a_s)` inside a piece.
+    #[inline]
+    fn with_slope(&self, signal: &Signal, t: f64) -> (f64, f64) {
+        let (v_r, a_r) = signal.velocity_acceleration(t);
+        (
+            self.d * (v_r - (self.v0 + self.a_s * (t - self.tau0))),
+            self.d * (a_r - self.a_s),
+        )
+    }
+}
+
+impl EventEngine<'_> {
+    /// When a stuck slider stops sticking: it follows the rod to the end of
+    /// its band piece (at once if `a_R` is outside the band at `tau`).
+    #[inline]
+    pub(super) fn find_stick_end(&self, tau: f64) -> SegmentEnd {
+        let (i, band) = self.band_at(tau);
+        let end = if band == Band::Inside {
+            self.band[i].end
+        } else {
+            tau
+        };
+        let at = if end > tau { end } else { tau };
+        let found = if at >= self.period {
+            Found::PeriodEnd
+        } else if self.is_jump(at) {
+            Found::Jump
+        } else if band == Band::Inside {
+            Found::BandEnd(self.band.get(i + 1).map_or(Band::Inside, |p| p.band))
+        } else {
+            Found::BandEnd(band)
+        };
+        SegmentEnd { at, found }
+    }
+
+    /// When a sliding slider's slip ends: the next zero of `v_rel` (a
+    /// transversal crossing or a grazing), a rod jump, or the period end.
+    /// Counts the solver's work and keeps its roots as first iterates.
+    // The hot path: inlined into each walk so that what follows a find is
+    // dispatched without a call (measured: out of line it costs the event
+    // rate several per cent).
+    #[inline(always)]
+    pub(super) fn find_slip_end(&mut self, walk: &Walk, dir: Direction) -> SegmentEnd {
+        let signal = self.signal;
+        let gap = SlipGap {
+            tau0: walk.tau,
+            v0: walk.v,
+            a_s: self.contact.slip_acceleration(dir),
+            d: dir.sign(),
+        };
+        // |v_rel| shrinks where d (a_R - a_s) < 0.
+        let approaching = match dir {
+            Direction::Forward => Ordering::Less,
+            Direction::Backward => Ordering::Greater,
+        };
+        let slip = match dir {
+            Direction::Forward => &mut self.slip_forward,
+            Direction::Backward => &mut self.slip_backward,
+        };
+        let pieces = &slip.partition.pieces;
+        let first = slip.partition.locate(gap.tau0);
+        let mut evaluations = 0u64;
+        let mut iterations = 0u64;
+        let mut j = first;
+        let end = loop {
+            let piece = pieces[j];
+            let end = piece.end;
+            let at_period_end = end >= self.period;
+            let jump_here = !at_period_end && self.jump == Some(end);
+            let departure_piece = walk.departure && j == first;
+            if piece.sign == approaching && !departure_piece {
+                let f_end = gap.before(signal, end);
+                evaluations += 1;
+                let next_sign = if at_period_end {
+                    pieces[0].sign
+                } else {
+                    pieces[j + 1].sign
+                };
+                let turns = next_sign != approaching
+                    && !jump_here
+                    && !(at_period_end && self.jump == Some(0.0));
+                if self.contact.at_rest(f_end) && turns {
+                    break SegmentEnd {
+                        at: end,
+                        found: Found::Grazing,
+                    };
+                }
+                if f_end < 0.0 {
+                    let lo = piece.start.max(gap.tau0);
+                    let f_lo = gap.after(signal, lo);
+                    evaluations += 1;
+                    if f_lo <= 0.0 {
+                        break SegmentEnd {
+                            at: lo,
+                            found: Found::Crossing {
+                                time_error: 0.0,
+                                a_r: None,
+                            },
+                        };
+                    }
+                    let tol = (self.tol_t, self.tol_f);
+                    let hint = &mut slip.hints[j];
+                    let (found, n) =
+                        crossing(signal, gap, (lo, piece.end), (f_lo, f_end), tol, hint);
+                    iterations += n;
+                    evaluations += n;
+                    break found;
+                }
+            }
+            if at_period_end {
+                break SegmentEnd {
+                    at: self.period,
+                    found: Found::PeriodEnd,
+                };
+            }
+            if jump_here {
+                break SegmentEnd {
+                    at: end,
+                    found: Found::Jump,
+                };
+            }
+            j += 1;
+        };
+        self.counters.evaluations += evaluations;
+        self.counters.root_iterations += iterations;
+        end
+    }
+}
+
+/// The transversal zero of the slip gap in `span`, where it changes sign
+/// from `f.0 > 0` to `f.1 < 0`, by safeguarded Newton to the
+/// tolerances `(time, gap)`, starting from the extrapolated last roots on
+/// the piece (`hint`, updated). Returns the zero and the solver's
+/// iterations.
+#[inline]
+fn crossing(
+    signal: &Signal,
+    gap: SlipGap,
+    span: (f64, f64),
+    f: (f64, f64),
+    (tol_t, tol_f): (f64, f64),
+    hint: &mut [f64; 2],
+) -> (SegmentEnd, u64) {
+    let root = bracket::solve(
+        |t| gap.with_slope(signal, t),
+        span,
+        f,
+        tol_t,
+        tol_f,
+        extrapolate(*hint),
+    );
+    *hint = [hint[1], root.t];
+    // f' = d (a_R - a_s) at the solver's last point.
+    let a_r = root
+        .derivative
+        .is_finite()
+        .then_some(gap.d * root.derivative + gap.a_s);
+    let found = Found::Crossing {
+        time_error: root.bracket,
+        a_r,
+    };
+    (SegmentEnd { at: root.t, found }, u64::from(root.iterations))
+}
+
+/// The first iterate from the last two roots on a piece: their linear
+/// extrapolation, or the last root alone.
+fn extrapolate([before, last]: [f64; 2]) -> Option<f64> {
+    match (before.is_finite(), last.is_finite()) {
+        (true, true) => Some(2.0 * last - before),
+        (_, true) => Some(last),
+        _ => None,
+    }
+}
+
+/// Merges the partitions of `a_R - a_0^+` and `a_R - a_0^-` into band
+/// pieces; a jump phase always stays a piece boundary.
+pub(super) fn band_pieces(
+    plus: &Partition,
+    minus: &Partition,
+    jump: Option<f64>,
+) -> Vec<BandPiece> {
+    let mut knots: Vec<f64> = plus
+        .pieces
+        .iter()
+        .chain(&minus.pieces)
+        .map(|p| p.start)
+        .collect();
+    let period = plus.pieces.last().map_or(0.0, |p| p.end);
+    knots.sort_by(f64::total_cmp);
+    knots.dedup();
+    knots.push(period);
+    let mut pieces: Vec<BandPiece> = Vec::with_capacity(knots.len());
+    for w in knots.windows(2) {
+        let (start, end) = (w[0], w[1]);
+        let mid = 0.5 * (start + end);
+        let band = if plus.pieces[plus.locate(mid)].sign == Ordering::Greater {
+            Band::Above
+        } else if minus.pieces[minus.locate(mid)].sign == Ordering::Less {
+            Band::Below
+        } else {
+            Band::Inside
+        };
+        match pieces.last_mut() {
+            Some(last) if last.band == band && jump != Some(start) => last.end = end,
+            _ => pieces.push(BandPiece { start, end, band }),
+        }
+    }
+    pieces
+}
