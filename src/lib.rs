@@ -30,6 +30,7 @@ pub mod interrupt;
 pub mod motor;
 pub mod numerics;
 pub mod observer;
+pub mod optimize;
 pub mod output;
 pub mod plot;
 pub mod power;

@@ -62,6 +62,8 @@
 //!               "friction_energy", "stiction_fraction", "velocity_per_power"]
 //! trajectory = false          # record the steady-state period's trajectory
 //! events = false              # record the event log
+//!
+//! [optimize]                  # optional: read by `stickslip optimize` only
 //! ```
 //!
 //! # Rules
@@ -139,6 +141,10 @@ pub struct SceneFile {
     /// `[outputs]`; `None`: everything the scene allows.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub outputs: Option<OutputsTable>,
+    /// `[optimize]`: read and checked by `stickslip optimize` only
+    /// (`crate::optimize::spec`); every other command ignores it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub optimize: Option<toml::Table>,
 }
 
 /// The `[motor]` table (SI units).
@@ -928,6 +934,7 @@ impl From<&Scene> for SceneFile {
                 trajectory: Some(scene.outputs.trajectory),
                 events: Some(scene.outputs.events),
             }),
+            optimize: None,
         }
     }
 }
