@@ -28,6 +28,7 @@
 
 mod check;
 mod compare;
+mod optimize;
 mod plot;
 mod run;
 mod signal;
@@ -68,6 +69,9 @@ enum Command {
     Compare(compare::CompareArgs),
     /// Publication figure of a scene or a sweep output (SVG, PDF, PNG).
     Plot(plot::PlotArgs),
+    /// The best rod signal of n harmonics at the scene's stroke and f_max,
+    /// written as a runnable scene.
+    Optimize(optimize::OptimizeArgs),
 }
 
 /// The output and error streams of one invocation.
@@ -118,6 +122,7 @@ where
         Some(Command::Signal(args)) => signal::signal(args, streams).map(|()| 0),
         Some(Command::Compare(args)) => return compare::compare(args, streams),
         Some(Command::Plot(args)) => plot::plot(args, streams).map(|()| 0),
+        Some(Command::Optimize(args)) => optimize::optimize(args, streams).map(|()| 0),
     };
     match outcome {
         Ok(code) => code,

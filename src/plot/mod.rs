@@ -26,7 +26,9 @@
 //!   signals, signals of equal `f_max`);
 //! * [`performance`]: figures 6 and 7 (indicators against `n`);
 //! * [`scaling`]: figure 9 and the stroke scaling law;
-//! * [`timeline`]: the slider's modes over the start-up.
+//! * [`timeline`]: the slider's modes over the start-up;
+//! * [`optimize`]: an optimal signal against the sigma signal, and the
+//!   `n = 2` design plane as a heat map.
 //!
 //! # Output contract
 //!
@@ -48,6 +50,7 @@ mod font;
 pub mod layout;
 pub mod legend;
 pub mod motion;
+pub mod optimize;
 pub mod performance;
 pub mod scaling;
 pub mod series;
