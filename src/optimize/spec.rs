@@ -172,7 +172,7 @@ impl Settings {
             ),
         };
         let harmonics = integer(field, n, 2, MAX_HARMONICS as i64)?;
-        let (field, text) = match (&overrides.objective, &table.objective) {
+        let (objective_field, text) = match (&overrides.objective, &table.objective) {
             (Some(o), _) => ("--objective", o.clone()),
             (None, Some(o)) => ("optimize.objective", o.clone()),
             (None, None) => ("optimize.objective", "v_inf".to_owned()),
@@ -181,7 +181,7 @@ impl Settings {
             .split(',')
             .map(|name| {
                 Objective::from_name(name.trim()).ok_or_else(|| ParamError::Inconsistent {
-                    field: field.to_owned(),
+                    field: objective_field.to_owned(),
                     reason: format!(
                         "unknown objective \"{}\"; expected one of {}, or two of them \
                          separated by a comma (a Pareto front)",
@@ -193,7 +193,7 @@ impl Settings {
             .collect::<Result<Vec<_>, _>>()?;
         if objectives.len() > 2 || (objectives.len() == 2 && objectives[0] == objectives[1]) {
             return Err(ParamError::Inconsistent {
-                field: field.to_owned(),
+                field: objective_field.to_owned(),
                 reason: format!(
                     "\"{text}\": give one objective, or two different ones for a Pareto front"
                 ),
@@ -264,7 +264,7 @@ impl Settings {
             || limits.max_voltage_rms.is_some();
         if needs_power && scene.actuator.is_none() {
             let field = if objectives.contains(&Objective::VelocityPerPower) {
-                field
+                objective_field
             } else if limits.max_apparent_power.is_some() {
                 "optimize.max_apparent_power"
             } else {
