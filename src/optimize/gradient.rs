@@ -109,9 +109,9 @@ pub fn coordinate_gradient(problem: &Problem, shape: &Shape) -> Result<Vec<Value
     let mut out = Vec::with_capacity(2 * n - 2);
     for j in 0..n - 1 {
         let mut d = Values::default();
-        for k in 0..n {
-            let sign = if u[k] < 0.0 { -1.0 } else { 1.0 };
-            d = d.plus(&amplitude[k].scaled(sign * half * jac[k][j]));
+        for ((uk, row), dk) in u.iter().zip(&jac).zip(amplitude) {
+            let sign = if *uk < 0.0 { -1.0 } else { 1.0 };
+            d = d.plus(&dk.scaled(sign * half * row[j]));
         }
         out.push(d);
     }

@@ -150,13 +150,13 @@ pub fn maximise(
     for _ in 0..options.max_iterations {
         let mut d = apply(&h, &g);
         let mut slope = dot(&g, &d);
-        if !(slope > 0.0) {
+        if slope.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             // Not an ascent direction (rounding in H): restart from the
             // gradient.
             h = scaled_identity(n, options.first_step / norm(&g).max(f64::MIN_POSITIVE));
             d = apply(&h, &g);
             slope = dot(&g, &d);
-            if !(slope > 0.0) {
+            if slope.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                 return finish(z, f, history, Stop::Gradient);
             }
         }
@@ -168,7 +168,11 @@ pub fn maximise(
         for _ in 0..TRIALS {
             let zt: Vec<f64> = z.iter().zip(&d).map(|(a, b)| a + t * b).collect();
             let ft = value(&zt);
-            if !(ft >= f + C1 * t * slope) {
+            let increase = f + C1 * t * slope;
+            if ft
+                .partial_cmp(&increase)
+                .is_none_or(|o| o == std::cmp::Ordering::Less)
+            {
                 hi = t;
             } else {
                 let Some(gt) = gradient(&zt) else {

@@ -90,7 +90,8 @@ pub struct Optimum {
     pub references: Vec<Reference>,
     /// The search of the first objective.
     pub search: Search,
-    /// The best feasible signal of the first objective.
+    /// The best feasible signal of the first objective (for a Pareto
+    /// front, the front's point best in it).
     pub best: Found,
     /// The Pareto front, for two objectives.
     pub front: Option<Vec<pareto::FrontPoint>>,
@@ -167,7 +168,7 @@ pub fn optimize(scene: &Scene, settings: &Settings) -> Result<Optimum, Error> {
         }
         .into()
     };
-    let best = found.best.clone().ok_or_else(|| none_feasible(first))?;
+    let mut best = found.best.clone().ok_or_else(|| none_feasible(first))?;
     let front = match second {
         None => None,
         Some(b) => {
@@ -177,14 +178,21 @@ pub fn optimize(scene: &Scene, settings: &Settings) -> Result<Optimum, Error> {
             let end_b = search::search(&other, &seeds, &options)
                 .best
                 .ok_or_else(|| none_feasible(b))?;
-            Some(pareto::front(
+            let front = pareto::front(
                 &problem,
                 [first, b],
                 &best,
                 &end_b,
                 settings.pareto_points,
                 &options,
-            ))
+            );
+            // The front's first point is the best found in the first
+            // objective (the search for the second may have found a
+            // better one).
+            if let Some(top) = front.first() {
+                best = top.found.clone();
+            }
+            Some(front)
         }
     };
     Ok(Optimum {

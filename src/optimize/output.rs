@@ -337,13 +337,11 @@ pub fn to_text(optimum: &Optimum, written: &Written, timing: Option<Duration>) -
         p.stroke,
         s.seed
     );
+    let heading = format!("{first} ({})", report::unit(first.indicator()));
     let _ = writeln!(
         t,
-        "{:<9} {:<12} {:<34} {}",
-        "signal",
-        "regime",
-        "v_inf (m/s)",
-        format!("{first} ({})", report::unit(first.indicator()))
+        "{:<9} {:<12} {:<34} {heading}",
+        "signal", "regime", "v_inf (m/s)"
     );
     for r in &written.rows {
         match &r.outcome {

@@ -23,10 +23,11 @@
 //! `[0, 2 pi)`) a `kind = "harmonics"` scene gives, before its stroke
 //! scaling and shift; the scene scales them to the stroke exactly.
 //!
-//! Two shapes are the same signal when their canonical coefficients
-//! `c_k = u_k e^(i psi_k)` agree ([`Shape::distance`]); a shape whose
-//! `u_1` is negative is the same signal as the one with every `c_k`
-//! multiplied by `(-1)^k` (a delay by half a period).
+//! Two shapes are the same signal when their coefficients
+//! `c_k = u_k e^(i psi_k)` agree up to a delay, `c_k -> c_k e^(i k s)`
+//! ([`Shape::distance`]); a shape whose `u_1` is negative is the same
+//! signal as the one with every `c_k` multiplied by `(-1)^k` (a delay by
+//! half a period).
 
 use std::f64::consts::{PI, TAU};
 
@@ -182,14 +183,47 @@ impl Shape {
             .collect()
     }
 
-    /// The largest difference of two shapes' canonical coefficients
-    /// (`0` for the same signal, at most 2).
+    /// How far apart two shapes are as signals: the largest difference of
+    /// their coefficients, `max_k |c_k - c'_k e^(i k s)|`, minimised over
+    /// the delay `s` (`0` for the same signal, at most 2). Fixing
+    /// `phi_1 = 0` fixes the time origin only while `d_1` is not small; the
+    /// minimum over `s` makes the distance independent of it. The minimum
+    /// is bracketed on 512 delays and refined by golden-section search.
     pub fn distance(&self, other: &Shape) -> f64 {
-        self.coefficients()
-            .iter()
-            .zip(other.coefficients())
-            .map(|(a, b)| (a.0 - b.0).hypot(a.1 - b.1))
-            .fold(0.0, f64::max)
+        let (a, b) = (self.coefficients(), other.coefficients());
+        let at = |s: f64| {
+            a.iter()
+                .zip(&b)
+                .enumerate()
+                .map(|(k, (x, y))| {
+                    let (sin, cos) = ((k + 1) as f64 * s).sin_cos();
+                    let (yr, yi) = (y.0 * cos - y.1 * sin, y.0 * sin + y.1 * cos);
+                    (x.0 - yr).hypot(x.1 - yi)
+                })
+                .fold(0.0, f64::max)
+        };
+        const GRID: usize = 512;
+        let step = TAU / GRID as f64;
+        let (mut best, mut s_best) = (at(0.0), 0.0);
+        for i in 1..GRID {
+            let s = step * i as f64;
+            let d = at(s);
+            if d < best {
+                best = d;
+                s_best = s;
+            }
+        }
+        let (mut lo, mut hi) = (s_best - step, s_best + step);
+        let golden = 0.5 * (5f64.sqrt() - 1.0);
+        for _ in 0..60 {
+            let (c, d) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
+            if at(c) < at(d) {
+                hi = d;
+            } else {
+                lo = c;
+            }
+        }
+        best.min(at(0.5 * (lo + hi)))
     }
 
     /// For `n = 2`: the amplitude ratio `d_2 / d_1` and the relative phase
@@ -245,8 +279,8 @@ mod tests {
         }
         let series = shape.series(2.0);
         assert!(series.phases[0] == 0.0);
-        for k in 0..4 {
-            assert!((series.amplitudes[k] - u[k].abs()).abs() < 1e-15);
+        for (d, uk) in series.amplitudes.iter().zip(&u) {
+            assert!((d - uk.abs()).abs() < 1e-15);
         }
     }
 
@@ -262,16 +296,23 @@ mod tests {
         assert!((s.phases[1] - (1.0 + PI)).abs() < 1e-15);
         let back = Shape::of_series(&s.amplitudes, &s.phases);
         assert!(back.distance(&shape) < 1e-15);
-        // u_1 < 0: the same signal as the canonical one, delayed by T/2.
+        // u = (-cos 0.4, sin 0.4) is u = (cos 0.4, sin 0.4) delayed by T/2
+        // (sin(t + pi) = -sin t, sin(2t + 2 pi + psi) = sin(2t + psi)).
         let flipped = Shape {
             angles: vec![PI - 0.4],
             phases: vec![1.0],
         };
         let canonical = Shape {
-            angles: vec![-0.4],
+            angles: vec![0.4],
             phases: vec![1.0],
         };
         assert!(flipped.distance(&canonical) < 1e-15);
+        // u -> -u is the mirrored signal, another one (model 7).
+        let mirrored = Shape {
+            angles: vec![0.4 - PI],
+            phases: vec![1.0],
+        };
+        assert!(mirrored.distance(&canonical) > 0.1);
     }
 
     #[test]
@@ -288,11 +329,28 @@ mod tests {
             let mut minus = shape.clone();
             minus.angles[j] -= h;
             let (up, um) = (plus.unit_amplitudes(), minus.unit_amplitudes());
-            for k in 0..4 {
+            for (k, row) in jac.iter().enumerate() {
                 let fd = (up[k] - um[k]) / (2.0 * h);
-                assert!((jac[k][j] - fd).abs() < 1e-9, "d u_{k} / d t_{j}");
+                assert!((row[j] - fd).abs() < 1e-9, "d u_{k} / d t_{j}");
             }
         }
+    }
+
+    #[test]
+    fn a_delay_is_no_distance() {
+        // Harmonics 2 and 4 only: phi_1 fixes no time origin, and a delay
+        // s turns psi_k into psi_k + k s.
+        let a = Shape::of_series(&[0.0, 1.0, 0.0, 0.25], &[0.0, 0.3, 0.0, 2.0]);
+        let s = 0.7;
+        let b = Shape::of_series(
+            &[0.0, 1.0, 0.0, 0.25],
+            &[0.0, 0.3 + 2.0 * s, 0.0, 2.0 + 4.0 * s],
+        );
+        assert!(a.distance(&b) < 1e-12, "{}", a.distance(&b));
+        let c = Shape::of_series(&[0.0, 1.0, 0.0, 0.25], &[0.0, 0.3, 0.0, 2.5]);
+        // Harmonic 4 moved by 0.5 rad and harmonic 2 not: no delay moves
+        // both, so this is another signal.
+        assert!(a.distance(&c) > 1e-3);
     }
 
     #[test]

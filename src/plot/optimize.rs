@@ -24,6 +24,9 @@ use crate::optimize::map::Map;
 use crate::signal::{FourierSignal, Signal};
 use std::f64::consts::TAU;
 
+/// One quantity of the rod's state.
+type Quantity = fn(&crate::signal::RodState) -> f64;
+
 /// Samples per curve.
 const SAMPLES: usize = 801;
 
@@ -111,7 +114,7 @@ pub fn signal_figure(optimum: &Optimum, name: &str) -> Result<Figure, PlotError>
         }
         csv.row(&cells);
     }
-    let rows: [(&str, f64, fn(&crate::signal::RodState) -> f64); 3] = [
+    let rows: [(&str, f64, Quantity); 3] = [
         ("rod position (µm)", 1e6, |s| s.x),
         ("rod velocity (m/s)", 1.0, |s| s.v),
         ("rod acceleration (m/s²)", 1.0, |s| s.a),
@@ -133,6 +136,14 @@ pub fn signal_figure(optimum: &Optimum, name: &str) -> Result<Figure, PlotError>
             Axis::linear("t (µs)", (0.0, period * 1e6)).scaled(1e6),
             Axis::linear(label, padded(lo, hi, 0.06)).scaled(*scale),
         );
+        if *label == "rod velocity (m/s)" {
+            panel.series.push(Series::hline(
+                Some("v∞ of the optimum"),
+                v_best,
+                (0.0, period),
+                Look::reference(),
+            ));
+        }
         for (i, ((name, _), pts)) in curves.iter().zip(pts).enumerate() {
             panel
                 .series
