@@ -52,6 +52,7 @@
 //! 9. `report` (text and JSON), `check` (the fixed-step cross-check),
 //!    `export`, `compare` (a user's own results against the exact ones),
 //!    [`sweep`], [`characteristic`] (velocity against load, stall force),
+//!    [`optimize`] (the best drive signal),
 //!    [`plot`] (`plot/<figure family>.rs`);
 //! 10. [`cli`], the `stickslip` command.
 //!
@@ -73,6 +74,7 @@ mod interrupt;
 mod motor;
 pub mod numerics;
 mod observer;
+pub mod optimize;
 mod output;
 pub mod plot;
 mod power;

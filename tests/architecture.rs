@@ -26,7 +26,7 @@ const LAYERS: &[&[&str]] = &[
     &["provenance"],
     &["simulation"],
     &["report", "check", "compare"],
-    &["export", "sweep", "characteristic"],
+    &["export", "sweep", "characteristic", "optimize"],
     &["plot"],
     &["cli"],
 ];

@@ -29,6 +29,7 @@
 mod characteristic;
 mod check;
 mod compare;
+mod optimize;
 mod plot;
 mod run;
 mod signal;
@@ -72,6 +73,9 @@ enum Command {
     /// The force-velocity characteristic: v_inf against the load, stall
     /// force, holding force, output power, datasheet block.
     Characteristic(characteristic::CharacteristicArgs),
+    /// The best rod signal of n harmonics at the scene's stroke and f_max,
+    /// written as a runnable scene.
+    Optimize(optimize::OptimizeArgs),
 }
 
 /// The output and error streams of one invocation.
@@ -125,6 +129,7 @@ where
         Some(Command::Characteristic(args)) => {
             characteristic::characteristic(args, streams).map(|()| 0)
         }
+        Some(Command::Optimize(args)) => optimize::optimize(args, streams).map(|()| 0),
     };
     match outcome {
         Ok(code) => code,

@@ -29,6 +29,8 @@
 //! * [`timeline`]: the slider's modes over the start-up;
 //! * [`characteristic`]: `v_inf` against the load, with the stall force
 //!   and the output power.
+//! * [`optimize`]: an optimal signal against the sigma signal, and the
+//!   `n = 2` design plane as a heat map.
 //!
 //! # Output contract
 //!
@@ -51,6 +53,7 @@ mod font;
 mod layout;
 mod legend;
 pub mod motion;
+pub mod optimize;
 pub mod performance;
 pub mod scaling;
 mod series;

@@ -29,6 +29,10 @@ pub struct SceneFile {
     /// `[outputs]`; `None`: everything the scene allows.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub outputs: Option<OutputsTable>,
+    /// `[optimize]`: read and checked by `stickslip optimize` only
+    /// (`crate::optimize::spec`); every other command ignores it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub optimize: Option<toml::Table>,
 }
 
 /// The `[motor]` table (SI units).
@@ -245,6 +249,7 @@ impl From<&Scene> for SceneFile {
                 trajectory: Some(scene.outputs.trajectory),
                 events: Some(scene.outputs.events),
             }),
+            optimize: None,
         }
     }
 }

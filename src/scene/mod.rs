@@ -62,6 +62,8 @@
 //!               "friction_energy", "stiction_fraction", "velocity_per_power"]
 //! trajectory = false          # record the steady-state period's trajectory
 //! events = false              # record the event log
+//!
+//! [optimize]                  # optional: read by `stickslip optimize` only
 //! ```
 //!
 //! # Rules
