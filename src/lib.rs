@@ -16,6 +16,8 @@
 //! 4. [`indicators`] drives the transient and the periodic steady state and
 //!    turns observer results into the paper's performance indicators;
 //!    [`power`] adds the electrical input power (section 6.3);
+//!    [`sensitivity`] differentiates the steady state with respect to the
+//!    scene's parameters;
 //! 5. [`report`] prints text or JSON.
 
 pub mod budget;
@@ -36,6 +38,7 @@ pub mod power;
 pub mod provenance;
 pub mod report;
 pub mod scene;
+pub mod sensitivity;
 pub mod signal;
 pub mod simulation;
 pub mod stability;

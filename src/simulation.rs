@@ -1034,3 +1034,26 @@ fn estimate_errors(
         velocity_per_power: None,
     }
 }
+
+/// The exact sensitivities of `v_inf` to every parameter of `scene`
+/// ([`crate::sensitivity::Parameter::all_for`]) at the steady state of its
+/// run `report` (docs/model.md section 14). Only the event engine's steady
+/// state has them.
+pub fn sensitivities(
+    scene: &Scene,
+    report: &RunReport,
+) -> Result<crate::sensitivity::Sensitivities, Error> {
+    if scene.run.engine != EngineKind::Event {
+        return Err(SimulationError::NoSensitivity(
+            "they are exact for the event engine only (run.engine = \"event\")".to_owned(),
+        )
+        .into());
+    }
+    let parameters = crate::sensitivity::Parameter::all_for(&scene.signal);
+    crate::sensitivity::of_steady_state(
+        &scene.signal,
+        &scene.motor,
+        report.steady.boundary_velocity,
+        &parameters,
+    )
+}
