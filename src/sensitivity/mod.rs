@@ -138,8 +138,9 @@ pub struct Sensitivity {
 /// The sensitivities of a steady state.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sensitivities {
-    /// `v_inf` of the steady period they belong to (m/s): bit for bit the
-    /// run's.
+    /// `v_inf` of the steady period they belong to (m/s): the run's, to
+    /// the engine's event-time tolerance (the root finder starts from what
+    /// the engine found before, so the last bits may differ).
     pub v_inf: f64,
     /// The boundary velocity `v*` (m/s).
     pub boundary_velocity: f64,

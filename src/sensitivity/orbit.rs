@@ -1,8 +1,8 @@
 //! The steady period as the sensitivities see it: the pieces of constant
 //! mode between events, each with what ended it (docs/model.md section
 //! 14.2). Recorded by an [`Observer`] on one period of the periodic orbit,
-//! the same period [`crate::indicators::steady_state_at`] observes, so that
-//! the step and `v_inf` are bit for bit the run's.
+//! the same period [`crate::indicators::steady_state_at`] observes (its
+//! event times agree with the run's to the engine's tolerance).
 
 use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::{

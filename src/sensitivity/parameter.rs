@@ -184,11 +184,14 @@ impl Parameter {
     /// A scale for the parameter (its own units): the distance to a change
     /// of the event structure is judged against it. The magnitude of the
     /// value, or a natural scale where the value may be 0 (`g_t` against
-    /// `a_0 + a_d`, an amplitude against the largest, a phase against 1 rad).
+    /// `a_d`, the largest load sliding friction holds; an amplitude against
+    /// the largest; a phase against 1 rad).
     pub fn scale(self, spec: &SignalSpec, motor: &Motor) -> f64 {
         let value = self.value(spec, motor.params()).unwrap_or(0.0).abs();
         let natural = match (self, spec) {
-            (Parameter::ExtraAcceleration, _) => motor.a_0() + motor.a_d(),
+            // Sliding friction holds loads up to a_d (docs/model.md section 9).
+            (Parameter::ExtraAcceleration, _) if motor.a_d() > 0.0 => motor.a_d(),
+            (Parameter::ExtraAcceleration, _) => motor.a_0(),
             (Parameter::Amplitude(_), SignalSpec::Harmonics { amplitudes, .. }) => {
                 amplitudes.iter().fold(0.0, |m: f64, d| m.max(d.abs()))
             }

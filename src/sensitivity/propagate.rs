@@ -58,6 +58,12 @@ pub struct Tan {
     pub x: f64,
     /// Derivative of the slider's velocity there.
     pub v: f64,
+    /// Derivative of the slider's position relative to the rod,
+    /// `x_S - x_R`, there. At a zero of `v_rel` it does not depend on how
+    /// fast the event time moves (`d(x_S - x_R)/dt = v_rel = 0`), which keeps
+    /// a nearly tangential zero (a large `dt`) from cancelling in the stick
+    /// that follows.
+    pub xi: f64,
 }
 
 impl Tan {
@@ -66,6 +72,7 @@ impl Tan {
             t: self.t + k * o.t,
             x: self.x + k * o.x,
             v: self.v + k * o.v,
+            xi: self.xi + k * o.xi,
         }
     }
 }
@@ -107,21 +114,19 @@ impl Context<'_> {
 
     /// The tangent of the slider's velocity at the period start.
     pub fn start(&self, orbit: &Orbit, dir: &Tangent, dv0: f64) -> Tan {
-        if orbit.stuck_at_boundary {
+        let v = if orbit.stuck_at_boundary {
             // v_S(0) = v_R(T^-) of the previous period, at its moving end.
             let p = RodPoint::left(self.signal, orbit.period);
-            let d = dir.rod.at(&p);
-            Tan {
-                t: 0.0,
-                x: 0.0,
-                v: d.v + p.a * dir.rod.period(orbit.period),
-            }
+            dir.rod.at(&p).v + p.a * dir.rod.period(orbit.period)
         } else {
-            Tan {
-                t: 0.0,
-                x: 0.0,
-                v: dv0,
-            }
+            dv0
+        };
+        let rod = dir.rod.at(&RodPoint::right(self.signal, 0.0));
+        Tan {
+            t: 0.0,
+            x: 0.0,
+            v,
+            xi: -rod.x,
         }
     }
 
@@ -130,8 +135,10 @@ impl Context<'_> {
         let mut nodes = Vec::with_capacity(pieces.len() + 1);
         let mut tan = start;
         nodes.push(tan);
+        let mut after_zero = false;
         for piece in pieces {
-            tan = self.piece(orbit, piece, dir, tan);
+            tan = self.piece(orbit, piece, dir, tan, after_zero);
+            after_zero = matches!(piece.end_cause, End::Crossing(_) | End::Grazing(_));
             nodes.push(tan);
         }
         Walk { nodes }
@@ -147,7 +154,10 @@ impl Context<'_> {
         }
     }
 
-    fn piece(&self, orbit: &Orbit, piece: &Piece, dir: &Tangent, a: Tan) -> Tan {
+    /// The tangent at the end of `piece` from the one at its start `a`;
+    /// `after_zero`: the piece starts at a zero of `v_rel` (its `xi` is
+    /// exact there).
+    fn piece(&self, orbit: &Orbit, piece: &Piece, dir: &Tangent, a: Tan, after_zero: bool) -> Tan {
         let (ta, tb) = (piece.start, piece.end);
         let end = RodPoint::left(self.signal, tb);
         let d_end = dir.rod.at(&end);
@@ -156,18 +166,23 @@ impl Context<'_> {
                 let a_s = self.slip_acceleration(piece.mode);
                 let da_s = dir.slip(d);
                 let span = tb - ta;
-                let dt_b = match piece.end_cause {
-                    End::Crossing(_) | End::Grazing(_) => {
-                        (a.v + da_s * span - a_s * a.t - d_end.v) / (end.a - a_s)
-                    }
-                    _ => self.feature_time(orbit, dir, tb),
+                let at_zero = matches!(piece.end_cause, End::Crossing(_) | End::Grazing(_));
+                let dt_b = if at_zero {
+                    (a.v + da_s * span - a_s * a.t - d_end.v) / (end.a - a_s)
+                } else {
+                    self.feature_time(orbit, dir, tb)
                 };
                 let v_b = piece.v_start + a_s * span;
                 let moved = dt_b - a.t;
+                let fixed = a.x + a.v * span + 0.5 * da_s * span * span - v_b * a.t;
+                // At a zero of v_rel, v_S = v_R: the moving end does not
+                // move the slider relative to the rod.
+                let relative = if at_zero { 0.0 } else { (v_b - end.v) * dt_b };
                 Tan {
                     t: dt_b,
-                    x: a.x + a.v * span + 0.5 * da_s * span * span + v_b * moved,
+                    x: fixed + v_b * dt_b,
                     v: a.v + da_s * span + a_s * moved,
+                    xi: fixed + relative - d_end.x,
                 }
             }
             Mode::Stick => {
@@ -177,12 +192,18 @@ impl Context<'_> {
                     }
                     _ => self.feature_time(orbit, dir, tb),
                 };
-                let start = RodPoint::right(self.signal, ta);
-                let d_start = dir.rod.at(&start);
+                // x_S - x_R is constant in stick, and so is its tangent.
+                let xi = if after_zero {
+                    a.xi
+                } else {
+                    let start = RodPoint::right(self.signal, ta);
+                    a.x - (dir.rod.at(&start).x + start.v * a.t)
+                };
                 Tan {
                     t: dt_b,
-                    x: a.x + (d_end.x + end.v * dt_b) - (d_start.x + start.v * a.t),
+                    x: xi + d_end.x + end.v * dt_b,
                     v: d_end.v + end.a * dt_b,
+                    xi,
                 }
             }
         }
