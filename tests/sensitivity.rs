@@ -44,26 +44,8 @@ fn steady(scene: &Scene) -> Option<(f64, f64, Vec<String>)> {
             .ok()?;
     // The same orbit; event times agree to the engine's tolerance.
     assert!((s.v_inf - r.indicators.v_inf).abs() <= 1e-12 * r.indicators.v_inf.abs().max(1e-300));
-    let tokens: Vec<String> = s
-        .events
-        .iter()
-        .map(|e| match e.kind {
-            EventKind::StickToSlip { to } => format!("exit {to:?}"),
-            EventKind::SlipToStick => "stick".to_owned(),
-            EventKind::Reversal { to } => format!("reversal {to:?}"),
-            EventKind::Grazing { then } => format!("grazing {then:?}"),
-            EventKind::Jump { then, .. } => format!("jump {then:?}"),
-        })
-        .collect();
-    // The smallest rotation names the cycle.
-    let cycle = (0..tokens.len().max(1))
-        .map(|k| {
-            let mut t = tokens.clone();
-            t.rotate_left(k);
-            t
-        })
-        .min()
-        .unwrap_or_default();
+    let tokens: Vec<String> = s.events.iter().map(|e| token(&e.kind)).collect();
+    let cycle = cycle(tokens);
     Some((
         r.indicators.v_inf,
         r.error.v_inf.unwrap_or(f64::INFINITY),
@@ -323,4 +305,183 @@ fn ideal_continuous_signal_stalls_at_the_sliding_friction() {
             Outcome::RunAway { .. }
         ));
     }
+}
+
+/// `v_inf` of the orbit the motion from rest converges to (simulated to
+/// convergence: the definition of `v_inf`, docs/model.md section 3), the
+/// sensitivities there for `parameters` and the orbit's event structure.
+fn limit_from_rest(
+    scene: &Scene,
+    parameters: &[Parameter],
+) -> Option<(f64, Vec<Derivative>, Vec<String>)> {
+    let motor = Motor::new(scene.motor).ok()?;
+    let signal = stickslip::Signal::build(&scene.signal, &motor).ok()?;
+    let boundary = sensitivity::from_rest(&signal, &motor)?;
+    let s = sensitivity::of_steady_state(&scene.signal, &scene.motor, boundary, parameters).ok()?;
+    let tokens: Vec<String> = s.events.iter().map(|e| token(&e.kind)).collect();
+    let derivatives = s.entries.iter().map(|e| e.derivative).collect();
+    Some((s.v_inf, derivatives, cycle(tokens)))
+}
+
+/// The name of an event in an event structure. A grazing that sticks is
+/// the zero of `v_rel` it is in the limit (decided within the engine's
+/// zero-velocity tolerance): the same branch.
+fn token(kind: &EventKind) -> String {
+    match *kind {
+        EventKind::StickToSlip { to } => format!("exit {to:?}"),
+        EventKind::SlipToStick
+        | EventKind::Grazing {
+            then: stickslip::engine::Mode::Stick,
+        } => "stick".to_owned(),
+        EventKind::Reversal { to } => format!("reversal {to:?}"),
+        EventKind::Grazing { then } => format!("grazing {then:?}"),
+        EventKind::Jump { then, .. } => format!("jump {then:?}"),
+    }
+}
+
+/// A cyclic sequence named by its smallest rotation.
+fn cycle(tokens: Vec<String>) -> Vec<String> {
+    (0..tokens.len().max(1))
+        .map(|k| {
+            let mut t = tokens.clone();
+            t.rotate_left(k);
+            t
+        })
+        .min()
+        .unwrap_or_default()
+}
+
+#[test]
+fn changes_of_the_event_structure_give_one_sided_derivatives() {
+    let p = Parameter::ExtraAcceleration;
+    let mut kinds = std::collections::BTreeMap::new();
+    for signal in [
+        SignalSpec::fourier(25e-6, 4.0, 2, true),
+        SignalSpec::fourier(25e-6, 1.5, 3, false),
+        SignalSpec::fourier(25e-6, 9.0, 4, true),
+        SignalSpec::fourier(25e-6, 0.6, 2, true),
+    ] {
+        let scene = Scene {
+            signal,
+            actuator: None,
+            ..Scene::default()
+        };
+        let motor = Motor::new(scene.motor).unwrap();
+        let scale = p.scale(&scene.signal, &motor);
+        let grid: Vec<f64> = (0..=30)
+            .map(|i| motor.a_d() * (-0.95 + 1.9 * f64::from(i) / 30.0))
+            .collect();
+        let at = |g: f64| limit_from_rest(&with(&scene, p, g), &[]);
+        let derivative = |g: f64| limit_from_rest(&with(&scene, p, g), &[p]).map(|x| x.1[0]);
+        for w in grid.windows(2) {
+            let (Some((_, _, left)), Some((_, _, right))) = (at(w[0]), at(w[1])) else {
+                continue;
+            };
+            if left == right {
+                continue;
+            }
+            // Bisection on the event structure to 1e-12 of g_t's scale,
+            // well within NEAR of the change.
+            let (mut lo, mut hi) = (w[0], w[1]);
+            while hi - lo > 1e-12 * scale {
+                let mid = 0.5 * (lo + hi);
+                match at(mid) {
+                    Some((_, _, s)) if s == left => lo = mid,
+                    _ => hi = mid,
+                }
+            }
+            let (Some((_, _, s_lo)), Some((_, _, s_hi)), Some(d_lo), Some(d_hi)) =
+                (at(lo), at(hi), derivative(lo), derivative(hi))
+            else {
+                continue;
+            };
+            // One-sided differences on each branch: the derivative at the
+            // change of the fit through points on the branch at k h. The
+            // fit is a + b x + c x^2 (three points); where a zero of v_rel
+            // is nearly tangential its time moves like sqrt(x), which adds
+            // a term x^(3/2) to v_inf: then a + b x + c x^(3/2) + d x^2
+            // (four points).
+            let h = 1e-6 * scale;
+            let side = |from: f64, step: f64, structure: &[String]| -> Option<(f64, f64)> {
+                let f: Vec<f64> = (1..=4)
+                    .map(|k| {
+                        at(from + f64::from(k) * step)
+                            .filter(|(_, _, s)| s == structure)
+                            .map(|(v, _, _)| v)
+                    })
+                    .collect::<Option<_>>()?;
+                let three = (2.5 * f[0] - 4.0 * f[1] + 1.5 * f[2]) / -step;
+                Some((three, fit_with_root_term(&f) / step))
+            };
+            let (Some(fd_left), Some(fd_right)) = (side(lo, -h, &s_lo), side(hi, h, &s_hi)) else {
+                continue;
+            };
+            for (d, there) in [(d_lo, lo), (d_hi, hi)] {
+                let Derivative::OneSided {
+                    left,
+                    right,
+                    change,
+                } = d
+                else {
+                    panic!(
+                        "{:?}, g_t = {there}: {s_lo:?} -> {s_hi:?} not detected: {d:?}",
+                        scene.signal
+                    );
+                };
+                let grazing = change.kind == ChangeKind::Grazing;
+                let pick = |(three, four): (f64, f64)| if grazing { four } else { three };
+                let (fd_left, fd_right) = (pick(fd_left), pick(fd_right));
+                let rl = left.map_or(f64::NAN, |l| rel(l, fd_left));
+                let rr = right.map_or(f64::NAN, |r| rel(r, fd_right));
+                println!(
+                    "g_t = {there}: {:?} {s_lo:?} -> {s_hi:?}: left {left:?} vs {fd_left:e} ({rl:.1e}), \
+                     right {right:?} vs {fd_right:e} ({rr:.1e})",
+                    change.kind
+                );
+                *kinds.entry(change.kind.name()).or_insert(0) += 1;
+                // At a grazing the branch that sticks moves its zero of
+                // v_rel like sqrt(theta - theta_c): its derivative has a
+                // sqrt term, the differences converge like sqrt(h).
+                let tol = if grazing { 1e-5 } else { 1e-6 };
+                assert!(rl <= tol && rr <= tol, "g_t = {there}: {d:?}");
+            }
+        }
+    }
+    println!("{kinds:?}");
+    for (kind, least) in [("stick_phase", 4), ("grazing", 4), ("band_edge", 2)] {
+        assert!(kinds.get(kind).copied().unwrap_or(0) >= least, "{kinds:?}");
+    }
+}
+
+/// The slope `b` at 0 of `a + b x + c x^(3/2) + d x^2` through `f[k-1]`
+/// at `x = k`, `k = 1..4` (per step).
+fn fit_with_root_term(f: &[f64]) -> f64 {
+    // Solve the 4x4 system by Gaussian elimination with partial pivoting.
+    let mut m: Vec<[f64; 5]> = (1..=4)
+        .map(|k| {
+            let x = f64::from(k);
+            [1.0, x, x.powf(1.5), x * x, f[k as usize - 1]]
+        })
+        .collect();
+    for col in 0..4 {
+        let pivot = (col..4)
+            .max_by(|a, b| m[*a][col].abs().total_cmp(&m[*b][col].abs()))
+            .unwrap();
+        m.swap(col, pivot);
+        for row in col + 1..4 {
+            let factor = m[row][col] / m[col][col];
+            for c in col..5 {
+                m[row][c] -= factor * m[col][c];
+            }
+        }
+    }
+    let mut x = [0.0; 4];
+    for row in (0..4).rev() {
+        let mut acc = m[row][4];
+        for c in row + 1..4 {
+            acc -= m[row][c] * x[c];
+        }
+        x[row] = acc / m[row][row];
+    }
+    x[1]
 }

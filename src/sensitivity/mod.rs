@@ -37,12 +37,13 @@
 //! fields and their directions), [`harmonics`] (amplitudes and phases
 //! through stroke scaling and shift), [`orbit`] (the recorded period),
 //! [`propagate`] (the tangents and the fixed point), [`structure`] (changes
-//! of the event structure).
+//! of the event structure), [`selection`] (a nearer orbit that appears).
 
 pub mod harmonics;
 pub mod orbit;
 pub mod parameter;
 pub mod propagate;
+pub mod selection;
 pub mod structure;
 pub mod tangent;
 
@@ -57,7 +58,6 @@ use crate::motor::{Motor, MotorParams};
 use crate::signal::{Signal, SignalSpec};
 use orbit::Orbit;
 use propagate::{Context, NoDerivative};
-use structure::Candidate;
 
 /// A change of the event structure closer than `NEAR` times the
 /// parameter's scale ([`Parameter::scale`]) makes the derivative
@@ -66,7 +66,7 @@ pub const NEAR: f64 = 1e-9;
 
 /// The other side of a change that moves the orbit by a finite amount is
 /// evaluated this far (times the parameter's scale) beyond the change.
-pub const ACROSS: f64 = 1e-7;
+pub const ACROSS: f64 = 1e-11;
 
 /// Where the event structure changes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -190,6 +190,9 @@ pub fn of_steady_state(
         motor: &motor,
     };
     let candidates = structure::candidates(&ctx, &orbit);
+    let by_v = ctx.by_velocity(&orbit);
+    let reach = SELECTION_REACH * signal.velocity_scale();
+    let selections = selection::selections(&ctx, &orbit, &candidates, &by_v.nodes, reach);
     let mut entries = Vec::with_capacity(parameters.len());
     for &parameter in parameters {
         let value =
@@ -202,13 +205,25 @@ pub fn of_steady_state(
         let dir = parameter.tangent(spec, &motor, &signal)?;
         let own = ctx.branch(&orbit, &orbit.pieces, &dir)?;
         let scale = parameter.scale(spec, &motor);
-        let near = |c: &Candidate, dm: f64| c.m.abs() <= NEAR * scale * dm.abs() || !dm.is_finite();
-        let flagged: Vec<(&Candidate, f64)> = candidates
+        let flags = candidates
             .iter()
-            .map(|c| (c, c.derivative(&ctx, &orbit, &dir, &own.nodes)))
-            .filter(|(c, dm)| near(c, *dm))
-            .collect();
-        let derivative = if flagged.is_empty() && own.v_inf.is_finite() {
+            .map(|c| Flag {
+                kind: c.kind,
+                phase: c.phase,
+                m: c.m,
+                dm: c.derivative(&ctx, &orbit, &dir, &own.nodes),
+                alternative: c.alternative.as_deref(),
+            })
+            .chain(selections.iter().map(|s| Flag {
+                kind: s.kind,
+                phase: s.phase,
+                m: s.m,
+                dm: s.derivative(&ctx, &orbit, &candidates, &dir, &own.by_theta),
+                alternative: None,
+            }))
+            .filter(|f| f.m.abs() <= NEAR * scale * f.dm.abs() || !f.dm.is_finite())
+            .collect::<Vec<Flag>>();
+        let derivative = if flags.is_empty() && own.v_inf.is_finite() {
             Derivative::Smooth(own.v_inf)
         } else {
             one_sided(
@@ -218,7 +233,7 @@ pub fn of_steady_state(
                 (parameter, value, scale),
                 &dir,
                 own.v_inf,
-                &flagged,
+                &flags,
             )
         };
         entries.push(Sensitivity {
@@ -236,10 +251,26 @@ pub fn of_steady_state(
     })
 }
 
-/// The one-sided derivatives at the changes `flagged` (each with its
-/// `dm/dtheta`): the orbit's own branch on its side, the other side from
-/// the alternative branch of a single `stick_phase` change, else from runs
-/// beyond the changes.
+/// Farthest a jump of the period map is looked for between rest and the
+/// orbit ([`selection`]), relative to `max |v_R|`.
+pub const SELECTION_REACH: f64 = 1e-2;
+
+/// A change of the event structure near the scene, along one parameter.
+#[derive(Debug, Clone, Copy)]
+struct Flag<'a> {
+    kind: ChangeKind,
+    phase: f64,
+    /// The oriented measure (> 0 on the orbit's side).
+    m: f64,
+    /// Its derivative along the parameter.
+    dm: f64,
+    /// The other side's pieces, for a change that keeps the orbit.
+    alternative: Option<&'a [orbit::Piece]>,
+}
+
+/// The one-sided derivatives at the changes `flags`: the orbit's own
+/// branch on its side, the other side from the alternative branch of a
+/// single `stick_phase` change, else from runs beyond the changes.
 fn one_sided(
     ctx: &Context,
     orbit: &Orbit,
@@ -247,28 +278,27 @@ fn one_sided(
     (parameter, value, scale): (Parameter, f64, f64),
     dir: &tangent::Tangent,
     own: f64,
-    flagged: &[(&Candidate, f64)],
+    flags: &[Flag],
 ) -> Derivative {
-    let offsets: Vec<f64> = flagged
+    let offsets: Vec<f64> = flags
         .iter()
-        .map(|(c, dm)| {
-            if dm.is_finite() && *dm != 0.0 {
-                -c.m / dm
+        .map(|f| {
+            if f.dm.is_finite() && f.dm != 0.0 {
+                -f.m / f.dm
             } else {
                 0.0
             }
         })
         .collect();
-    let sides: Vec<f64> = flagged.iter().map(|(_, dm)| dm.signum()).collect();
-    let first = flagged.first().map(|(c, _)| *c);
-    let kind = match first {
-        Some(c) if flagged.iter().all(|(o, _)| o.kind == c.kind) => c.kind,
+    let sides: Vec<f64> = flags.iter().map(|f| f.dm.signum()).collect();
+    let kind = match flags.first() {
+        Some(f) if flags.iter().all(|o| o.kind == f.kind) => f.kind,
         Some(_) => ChangeKind::Several,
         None => ChangeKind::Grazing,
     };
     let change = Change {
         kind,
-        phase: first.map_or(0.0, |c| c.phase),
+        phase: flags.first().map_or(0.0, |f| f.phase),
         at: value + offsets.first().copied().unwrap_or(0.0),
     };
     let across = ACROSS * scale;
@@ -279,14 +309,17 @@ fn one_sided(
     let one_side = own.is_finite() && side != 0.0 && sides.iter().all(|s| *s == side);
     let (left, right) = if one_side {
         // The orbit's branch holds on `side`; the other side's branch:
-        let other = match flagged {
-            [(c, _)] if c.alternative.is_some() => {
-                let alt = c.alternative.as_deref().unwrap_or_default();
-                ctx.branch(orbit, alt, dir)
-                    .ok()
-                    .map(|b| b.v_inf)
-                    .filter(|d| d.is_finite())
-            }
+        let other = match flags {
+            [
+                Flag {
+                    alternative: Some(alt),
+                    ..
+                },
+            ] => ctx
+                .branch(orbit, alt, dir)
+                .ok()
+                .map(|b| b.v_inf)
+                .filter(|d| d.is_finite()),
             _ if side > 0.0 => run_at(value + lo - across),
             _ => run_at(value + hi + across),
         };
@@ -306,9 +339,16 @@ fn one_sided(
 }
 
 /// The derivative of `v_inf` along `parameter` at the scene with the
-/// parameter set to `value`, from the steady state the search from rest
-/// finds there (as a run does), without looking for changes of its event
-/// structure; `None` if there is none.
+/// parameter set to `value`, on the steady state the motion from rest
+/// reaches there, without looking for changes of its event structure;
+/// `None` if there is none.
+///
+/// Next to a change that moves the orbit by a finite amount the period map
+/// is discontinuous and may have a further fixed point close to the one
+/// the motion from rest reaches; a search for fixed points could land on
+/// either, so the start-up is simulated until it has converged
+/// ([`indicators::transient`]) and the fixed point is taken where it
+/// ends, as the run's slow path does.
 fn branch_at(
     (spec, params): (&SignalSpec, &MotorParams),
     parameter: Parameter,
@@ -317,8 +357,51 @@ fn branch_at(
     let (spec, params) = parameter.apply(spec, params, value);
     let motor = Motor::new(params).ok()?;
     let signal = Signal::build(&spec, &motor).ok()?;
-    let mut engine = EventEngine::new(&signal, &motor, EventOptions::default());
-    let (v_star, ..) = indicators::fixed_point(&mut engine, 0.0).ok()?;
+    let boundary_velocity = from_rest(&signal, &motor)?;
+    let orbit = orbit::record(&signal, &motor, boundary_velocity).ok()?;
+    let ctx = Context {
+        signal: &signal,
+        motor: &motor,
+    };
+    let dir = parameter.tangent(&spec, &motor, &signal).ok()?;
+    let branch = ctx.branch(&orbit, &orbit.pieces, &dir).ok()?;
+    branch.v_inf.is_finite().then_some(branch.v_inf)
+}
+
+/// Periods a start-up from rest may take in [`from_rest`].
+const FROM_REST_PERIODS: u64 = 20_000;
+
+/// The boundary velocity of the periodic orbit the motion from rest
+/// converges to, if it does within [`FROM_REST_PERIODS`]: the start-up's
+/// own convergence test ([`indicators::transient`]), or its last boundary
+/// velocities within rounding of each other (a stuck orbit can alternate
+/// between two neighbouring floating-point numbers).
+pub fn from_rest(signal: &Signal, motor: &Motor) -> Option<f64> {
+    let mut engine = EventEngine::new(signal, motor, EventOptions::default());
+    let options = indicators::AnalysisOptions {
+        max_periods: FROM_REST_PERIODS,
+        ..Default::default()
+    };
+    let transient = indicators::transient(
+        &mut engine,
+        &options,
+        indicators::StatsWanted::default(),
+        &mut (),
+    )
+    .ok()?;
+    let rounding = 8.0 * f64::EPSILON * signal.velocity_scale();
+    let tail =
+        &transient.boundary_velocities[transient.boundary_velocities.len().saturating_sub(4)..];
+    let settled = tail.len() == 4 && tail.windows(2).all(|w| (w[1] - w[0]).abs() <= rounding);
+    if !(transient.converged || settled) || transient.run_away.is_some() {
+        return None;
+    }
+    let seed = transient.final_velocity;
+    let reach = transient.remaining.unwrap_or(0.0) + transient.v_inf_error.unwrap_or(0.0);
+    let v_star = match indicators::fixed_point(&mut engine, seed) {
+        Ok((v, ..)) if (v - seed).abs() <= reach => v,
+        _ => seed,
+    };
     let before = engine
         .run_period(
             2,
@@ -329,12 +412,5 @@ fn branch_at(
             &mut (),
         )
         .ok()?;
-    let orbit = orbit::record(&signal, &motor, before.velocity).ok()?;
-    let ctx = Context {
-        signal: &signal,
-        motor: &motor,
-    };
-    let dir = parameter.tangent(&spec, &motor, &signal).ok()?;
-    let branch = ctx.branch(&orbit, &orbit.pieces, &dir).ok()?;
-    branch.v_inf.is_finite().then_some(branch.v_inf)
+    Some(before.velocity)
 }

@@ -62,6 +62,8 @@ pub struct Orbit {
     pub step: f64,
     /// The engine's `P'(v*)`.
     pub map_derivative: f64,
+    /// Slider velocity at the period end, `P(v*)` (m/s).
+    pub end_velocity: f64,
 }
 
 impl Orbit {
@@ -110,15 +112,27 @@ pub fn record(
         },
         &mut (),
     )?;
+    record_period(&mut engine, boundary_velocity, Some(before.mode))
+}
+
+/// Records one period of the period map from the slider velocity
+/// `velocity` at phase 0 (not a periodic orbit in general: the step and
+/// [`Orbit::end_velocity`] are `P`'s), the mode at the start following
+/// from it.
+pub fn record_map(signal: &Signal, motor: &Motor, velocity: f64) -> Result<Orbit, SimulationError> {
+    let mut engine = EventEngine::new(signal, motor, EventOptions::default());
+    record_period(&mut engine, velocity, None)
+}
+
+fn record_period(
+    engine: &mut EventEngine,
+    velocity: f64,
+    mode: Option<Mode>,
+) -> Result<Orbit, SimulationError> {
+    let signal = engine.signal();
     let mut recorder = Recorder::default();
-    let end = engine.run_period(
-        2,
-        PeriodStart {
-            velocity: boundary_velocity,
-            mode: Some(before.mode),
-        },
-        &mut recorder,
-    )?;
+    let end = engine.run_period(2, PeriodStart { velocity, mode }, &mut recorder)?;
+    let boundary_velocity = velocity;
     let period = signal.period();
     let items = recorder.items;
     let mut pieces = Vec::new();
@@ -149,13 +163,23 @@ pub fn record(
             }
         }
     }
+    // Without a mode at the boundary, a start with v_rel = 0 sticks.
+    let stuck = mode.map_or_else(
+        || {
+            pieces
+                .first()
+                .is_some_and(|p| p.start == 0.0 && p.mode == Mode::Stick)
+        },
+        |m| m == Mode::Stick,
+    );
     Ok(Orbit {
         period,
         boundary_velocity,
-        stuck_at_boundary: before.mode == Mode::Stick,
+        stuck_at_boundary: stuck,
         pieces,
         events,
         step: end.step,
         map_derivative: end.map_derivative,
+        end_velocity: end.velocity,
     })
 }

@@ -225,6 +225,8 @@ pub struct Branch {
     /// The total tangents (the fixed point's response included) at every
     /// piece start and the period end.
     pub nodes: Vec<Tan>,
+    /// The tangents along the parameter at a fixed start velocity.
+    pub by_theta: Vec<Tan>,
 }
 
 /// Why a derivative does not exist.
@@ -267,7 +269,15 @@ impl Context<'_> {
             step,
             v_inf: step / period - orbit.v_inf() * dir.rod.time_scale,
             nodes,
+            by_theta: by_theta.nodes,
         })
+    }
+
+    /// The tangents along the start velocity alone (`dv(0) = 1`, no
+    /// parameter change): `P'` at the end.
+    pub fn by_velocity(&self, orbit: &Orbit) -> Walk {
+        let none = Tangent::none();
+        self.walk(orbit, &orbit.pieces, &none, self.start(orbit, &none, 1.0))
     }
 
     /// The measure's helpers: band edge level for a direction.
