@@ -456,32 +456,10 @@ fn changes_of_the_event_structure_give_one_sided_derivatives() {
 /// The slope `b` at 0 of `a + b x + c x^(3/2) + d x^2` through `f[k-1]`
 /// at `x = k`, `k = 1..4` (per step).
 fn fit_with_root_term(f: &[f64]) -> f64 {
-    // Solve the 4x4 system by Gaussian elimination with partial pivoting.
-    let mut m: Vec<[f64; 5]> = (1..=4)
-        .map(|k| {
-            let x = f64::from(k);
-            [1.0, x, x.powf(1.5), x * x, f[k as usize - 1]]
-        })
-        .collect();
-    for col in 0..4 {
-        let pivot = (col..4)
-            .max_by(|a, b| m[*a][col].abs().total_cmp(&m[*b][col].abs()))
-            .unwrap();
-        m.swap(col, pivot);
-        for row in col + 1..4 {
-            let factor = m[row][col] / m[col][col];
-            for c in col..5 {
-                m[row][c] -= factor * m[col][c];
-            }
-        }
-    }
-    let mut x = [0.0; 4];
-    for row in (0..4).rev() {
-        let mut acc = m[row][4];
-        for c in row + 1..4 {
-            acc -= m[row][c] * x[c];
-        }
-        x[row] = acc / m[row][row];
-    }
-    x[1]
+    let basis = nalgebra::Matrix4::from_fn(|i, j| {
+        let x = (i + 1) as f64;
+        [1.0, x, x.powf(1.5), x * x][j]
+    });
+    let rhs = nalgebra::Vector4::new(f[0], f[1], f[2], f[3]);
+    basis.lu().solve(&rhs).expect("the four points fit")[1]
 }

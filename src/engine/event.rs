@@ -18,7 +18,7 @@
 //!   piece of that partition. A piece on which `|v_rel|` grows cannot hold a
 //!   zero; on a piece where it shrinks there is a zero iff `v_rel` has
 //!   changed sign at the piece's end, and then exactly one, found by
-//!   safeguarded Newton ([`super::bracket`]) to `4 eps T`. No event can be
+//!   safeguarded Newton ([`crate::numerics::bracket`]) to `4 eps T`. No event can be
 //!   missed: this is a proof, not a sampling.
 //! * **Grazing**: at the end of a shrinking piece whose next piece grows,
 //!   `v_rel` has a local extremum (a critical point of `v_rel`). If

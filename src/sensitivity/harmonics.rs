@@ -6,21 +6,21 @@
 //! program drives
 //!
 //! ```text
-//! x_R(tau) = c R(tau + t_min) - c R(t_min),   c = x_hat / (max R - min R),
+//! x_R(tau) = q R(tau + t_min) - q R(t_min),   q = x_hat / (max R - min R),
 //! ```
 //!
-//! `t_min` the phase of the minimum of `R` (0 without the shift, `c = 1`
+//! `t_min` the phase of the minimum of `R` (0 without the shift, `q = 1`
 //! without the scaling). At a fixed phase, with `dR = dR/dtheta`:
 //!
 //! ```text
-//! dx_R(tau) = (dc/c) x_R(tau) + c dR(tau + t_min) + v_R(tau) dt_min + const
-//! dc/c      = -(dR(t_max) - dR(t_min)) / (max R - min R)   (the extrema move,
+//! dx_R(tau) = (dq/q) x_R(tau) + q dR(tau + t_min) + v_R(tau) dt_min + const
+//! dq/q      = -(dR(t_max) - dR(t_min)) / (max R - min R)   (the extrema move,
 //!                                                           their values change by dR: envelope theorem)
 //! dt_min    = -(d/dt dR)(t_min) / R''(t_min)                (R'(t_min) = 0 stays)
 //! ```
 //!
-//! that is the amplitude rate `s = dc/c`, the shift rate `c = dt_min` and
-//! the series `c dR(tau + t_min)` of [`super::tangent::RodTangent`]. For
+//! that is the amplitude rate `s = dq/q`, the shift rate `c = dt_min` and
+//! the series `q dR(tau + t_min)` of [`super::tangent::RodTangent`]. For
 //! `theta = d_k`, `dR = sin(k w_0 t + phi_k)`; for `theta = phi_k`,
 //! `dR = d_k cos(k w_0 t + phi_k)`. A minimum or maximum that is attained
 //! twice (a tie between two extrema) makes the stroke scaling or the shift
@@ -75,7 +75,7 @@ pub fn tangent(
     let ext = raw.extrema();
     let (d_k, phi_k, m) = (amplitudes[k], phases[k], (k + 1) as f64);
     let d = |t: f64| d_series(theta, d_k, phi_k, m, omega, t);
-    let (c, scale) = match scale_to_stroke {
+    let (q, scale) = match scale_to_stroke {
         Some(stroke) => {
             let spread = ext.max - ext.min;
             (
@@ -93,12 +93,12 @@ pub fn tangent(
     } else {
         (0.0, 0.0)
     };
-    // c dR(tau + t0) as a series in tau: harmonic m with phase psi.
+    // q dR(tau + t0) as a series in tau: harmonic m with phase psi.
     let psi = phi_k + m * omega * t0;
     let (s, cs) = psi.sin_cos();
     let (a_m, b_m) = match theta {
-        Parameter::Amplitude(_) => (c * s, c * cs),
-        _ => (c * d_k * cs, -c * d_k * s),
+        Parameter::Amplitude(_) => (q * s, q * cs),
+        _ => (q * d_k * cs, -q * d_k * s),
     };
     let mut cos = vec![0.0; k + 1];
     let mut sin = vec![0.0; k + 1];

@@ -369,7 +369,7 @@ fn branch_at(
 }
 
 /// Periods a start-up from rest may take in [`from_rest`].
-const FROM_REST_PERIODS: u64 = 20_000;
+pub const FROM_REST_PERIODS: u64 = 20_000;
 
 /// The boundary velocity of the periodic orbit the motion from rest
 /// converges to, if it does within [`FROM_REST_PERIODS`]: the start-up's

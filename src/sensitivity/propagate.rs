@@ -251,7 +251,8 @@ impl Context<'_> {
         let by_theta = self.walk(orbit, pieces, dir, self.start(orbit, dir, 0.0));
         let p_v = by_v.end().v;
         let contraction = 1.0 - p_v;
-        if !(contraction > 0.0) {
+        // NaN fails too.
+        if contraction.is_nan() || contraction <= 0.0 {
             return Err(NoDerivative::NotContracting(p_v));
         }
         let dv_star = by_theta.end().v / contraction;
