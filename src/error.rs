@@ -182,6 +182,10 @@ pub enum SimulationError {
     /// The signal's event structure could not be computed.
     #[error("signal analysis failed: {0}")]
     Signal(String),
+    /// The steady state has no derivatives with respect to the scene's
+    /// parameters (docs/model.md section 14): the reason.
+    #[error("no sensitivities: {0}")]
+    NoSensitivity(String),
 }
 
 /// Scene files: reading, parsing and validating.

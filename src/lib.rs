@@ -46,6 +46,8 @@
 //! 4. `observer`: what a run records ([`EventLog`], [`Trajectory`]);
 //! 5. `analysis`: per-period statistics, the start-up, the fixed point of the
 //!    period map, the steady state and the error estimates;
+//!    [`sensitivity`]: exact derivatives of the steady state with respect to
+//!    the motor's and the signal's parameters;
 //! 6. `indicator`: the one table of indicators ([`Indicator`]);
 //! 7. `scene`: the validated description of a run ([`Scene`]);
 //! 8. `simulation`: runs a scene ([`simulate`]) with a time budget;
@@ -81,6 +83,7 @@ mod power;
 mod provenance;
 mod report;
 mod scene;
+pub mod sensitivity;
 mod signal;
 mod simulation;
 pub mod sweep;
@@ -108,5 +111,5 @@ pub use signal::description::SignalDescription;
 pub use signal::{FourierSignal, IdealShape, MAX_HARMONICS, RodState, Signal, SignalSpec};
 pub use simulation::{
     ErrorEstimate, Outcome, Regime, RunReport, SignalCache, SteadyStateCheck, Unsettled, build,
-    run, run_with, simulate, simulate_with, simulate_with_signal,
+    run, run_with, sensitivities, simulate, simulate_with, simulate_with_signal,
 };

@@ -17,6 +17,7 @@ use crate::indicator::Indicator;
 use crate::provenance;
 use crate::scene::Scene;
 use crate::scene::SceneFile;
+use crate::sensitivity::{Derivative, Sensitivities};
 use crate::simulation::{Outcome, RunReport, Unsettled};
 use serde_json::{Map, Value, json};
 use std::fmt::Write as _;
@@ -471,5 +472,84 @@ fn steady_text(r: &RunReport) -> String {
         r.work.root_iterations,
         (r.setup_time, r.simulation_time, r.wall_time),
     );
+    out
+}
+
+/// The `sensitivities` key of `run --json --sensitivities`
+/// (docs/interface.md section 3): one object per parameter with `value`
+/// and `unit`, and `left`, `right`, `change`, `change_at` where the event
+/// structure changes; `null` (and `sensitivities_unavailable` with the
+/// reason) when there are none.
+pub(crate) fn add_sensitivities_json(
+    object: &mut Value,
+    sensitivities: &Result<Sensitivities, String>,
+) {
+    let Value::Object(m) = object else {
+        return;
+    };
+    match sensitivities {
+        Ok(s) => {
+            let mut entries = Map::new();
+            for e in &s.entries {
+                let mut entry = Map::new();
+                entry.insert("value".into(), option_number(e.derivative.value()));
+                entry.insert("unit".into(), json!(e.parameter.unit()));
+                if let Derivative::OneSided {
+                    left,
+                    right,
+                    change,
+                } = e.derivative
+                {
+                    entry.insert("left".into(), option_number(left));
+                    entry.insert("right".into(), option_number(right));
+                    entry.insert("change".into(), json!(change.kind.name()));
+                    entry.insert("change_at".into(), number(change.at));
+                }
+                entries.insert(e.parameter.to_string(), Value::Object(entry));
+            }
+            m.insert("sensitivities".into(), Value::Object(entries));
+        }
+        Err(reason) => {
+            m.insert("sensitivities".into(), Value::Null);
+            m.insert("sensitivities_unavailable".into(), json!(reason));
+        }
+    }
+}
+
+/// The sensitivities as lines of the text summary.
+pub(crate) fn sensitivities_text(sensitivities: &Result<Sensitivities, String>) -> String {
+    let mut out = String::new();
+    match sensitivities {
+        Ok(s) => {
+            let _ = writeln!(out, "sensitivities of v_inf:");
+            for e in &s.entries {
+                let name = e.parameter.to_string();
+                let unit = e.parameter.unit();
+                let shown = |d: Option<f64>| d.map_or("none".to_owned(), |d| format!("{d:.6e}"));
+                match e.derivative {
+                    Derivative::Smooth(d) => {
+                        let _ = writeln!(out, "  d/d {name:<26} {d:.6e} {unit}");
+                    }
+                    Derivative::OneSided {
+                        left,
+                        right,
+                        change,
+                    } => {
+                        let _ = writeln!(
+                            out,
+                            "  d/d {name:<26} left {} / right {} {unit} ({} at {})",
+                            shown(left),
+                            shown(right),
+                            change.kind.name(),
+                            format_with_error(change.at, None)
+                        );
+                    }
+                }
+            }
+        }
+        Err(reason) => {
+            let _ = writeln!(out, "sensitivities: none ({reason})");
+        }
+    }
     out
 }

@@ -21,6 +21,7 @@ const LAYERS: &[&[&str]] = &[
     &["engine"],
     &["observer"],
     &["analysis"],
+    &["sensitivity"],
     &["indicator"],
     &["scene"],
     &["provenance"],

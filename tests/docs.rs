@@ -120,12 +120,18 @@ fn every_json_key_is_documented() {
             .unwrap_or_else(|e| panic!("{scene}: not one JSON object: {e}"));
         json_keys(&value, &mut keys);
     }
+    // The keys of --sensitivities (the default scene's parameters).
+    let output = stickslip(&["run", "--json", "--sensitivities"]);
+    let value: serde_json::Value = serde_json::from_str(&output).expect("one JSON object");
+    json_keys(&value, &mut keys);
     for expected in [
         "v_inf",
         "stick_to_slip",
         "v_inf_transient",
         "event_log",
         "mode",
+        "sensitivities",
+        "motor.extra_acceleration",
     ] {
         assert!(
             keys.contains(expected),

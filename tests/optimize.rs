@@ -1,4 +1,4 @@
-//! `stickslip optimize` (docs/model.md section 14, docs/interface.md):
+//! `stickslip optimize` (docs/model.md section 15, docs/interface.md):
 //! the written optimum re-runs to its `v_inf`, has the stroke exactly and
 //! no harmonic above the limit, is the same for the same seed, is never
 //! below the sigma signal at the paper's default; the sensitivities obey

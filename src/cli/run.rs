@@ -18,6 +18,10 @@ pub(crate) struct RunArgs {
     /// succeeded) instead of standard output.
     #[arg(long, short)]
     output: Option<PathBuf>,
+    /// Also report the exact derivatives of v_inf with respect to the
+    /// motor's and the signal's parameters (docs/model.md section 14).
+    #[arg(long)]
+    sensitivities: bool,
     #[command(flatten)]
     options: SceneOptions,
     /// Exact trajectory export (`--trajectory`, `--times`, `--sample-rate`,
@@ -96,14 +100,32 @@ pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failur
     if request.any() {
         crate::export::write_requested(&scene, &request)?;
     }
+    if args.sensitivities && scene.run.engine != crate::scene::EngineKind::Event {
+        return Err(
+            "--sensitivities needs run.engine = \"event\": the derivatives are those of the exact \
+             event-driven steady state"
+                .to_owned(),
+        );
+    }
     let outcome = simulation::simulate(&scene).map_err(|e| e.to_string())?;
+    let sensitivities = args.sensitivities.then(|| match outcome.report() {
+        Some(r) => simulation::sensitivities(&scene, r).map_err(|e| e.to_string()),
+        None => Err(format!("no periodic steady state ({})", outcome.regime())),
+    });
     let text = if args.json {
-        let mut text = serde_json::to_string_pretty(&report::to_json(&outcome, &scene))
-            .map_err(|e| e.to_string())?;
+        let mut value = report::to_json(&outcome, &scene);
+        if let Some(s) = &sensitivities {
+            report::add_sensitivities_json(&mut value, s);
+        }
+        let mut text = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
         text.push('\n');
         text
     } else {
-        report::to_text(&outcome)
+        let mut text = report::to_text(&outcome);
+        if let Some(s) = &sensitivities {
+            text.push_str(&report::sensitivities_text(s));
+        }
+        text
     };
     match args.output {
         Some(path) => crate::output::write_atomically(&path, text.as_bytes())

@@ -1,6 +1,6 @@
 //! The global stage: a seeded Latin hypercube over the design space and
 //! the choice of starting points for the local refinement (docs/model.md
-//! section 14).
+//! section 15).
 //!
 //! The box is every amplitude direction in the positive orthant (angles
 //! `t_j` in `[0, pi/2]`; negative amplitudes are phases shifted by `pi`,

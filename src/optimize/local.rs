@@ -2,7 +2,7 @@
 //! Overton use it for functions that are smooth almost everywhere but not
 //! at their optimum (A. S. Lewis, M. L. Overton, *Nonsmooth optimization
 //! via quasi-Newton methods*, Math. Program. 141 (2013) 135-163);
-//! docs/model.md section 14.
+//! docs/model.md section 15.
 //!
 //! `v_inf` as a function of the signal is smooth where the event structure
 //! of the steady orbit stays the same and has a kink where it changes (a

@@ -1,4 +1,4 @@
-//! The design plane of `n = 2` (docs/model.md section 14): at a fixed
+//! The design plane of `n = 2` (docs/model.md section 15): at a fixed
 //! stroke and `f_0` a signal of two harmonics is fixed by two numbers,
 //! the amplitude ratio `r = d_2 / d_1` and the relative phase
 //! `psi = phi_2 - 2 phi_1`. [`map`] computes `v_inf` on a grid over

@@ -1,4 +1,4 @@
-//! Optimal drive signals (`stickslip optimize`, docs/model.md section 14):
+//! Optimal drive signals (`stickslip optimize`, docs/model.md section 15):
 //! the best rod signal of `n` harmonics for an objective, at the scene's
 //! stroke and highest frequency.
 //!

@@ -1,4 +1,4 @@
-//! What `stickslip optimize` can optimise (docs/model.md section 14): the
+//! What `stickslip optimize` can optimise (docs/model.md section 15): the
 //! objectives, and the quantities of one run they and the limits are made
 //! of.
 //!

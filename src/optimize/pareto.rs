@@ -1,5 +1,5 @@
 //! A Pareto front of two objectives by the epsilon-constraint method
-//! (docs/model.md section 14).
+//! (docs/model.md section 15).
 //!
 //! With objectives `A` and `B` (each with its sense, so both maximised
 //! here): the search for `A` alone gives one end of the front, the search

@@ -1,6 +1,6 @@
 //! The optimisation problem: which signals are allowed (stroke, frequency,
 //! limits), how one is evaluated, and how the search weighs objective and
-//! limits (docs/model.md section 14).
+//! limits (docs/model.md section 15).
 //!
 //! A candidate is a [`Shape`]; its signal is the `kind = "harmonics"`
 //! series [`Shape::series`] at the fundamental frequency `f_0`, scaled to

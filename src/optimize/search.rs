@@ -1,6 +1,6 @@
 //! One search of a [`Problem`]: the global stage, the local refinements
 //! from its best distinct points, and the result (docs/model.md
-//! section 14).
+//! section 15).
 //!
 //! The reported optimum is the best *feasible* signal any run of the
 //! search evaluated ([`Problem::feasible`] on the values the run reports),

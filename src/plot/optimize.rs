@@ -1,4 +1,4 @@
-//! The figures of `stickslip optimize` (docs/model.md section 14):
+//! The figures of `stickslip optimize` (docs/model.md section 15):
 //!
 //! * [`signal_figure`]: the optimal rod signal against the sigma signal of
 //!   the same `n`, stroke and `f_max`, over one period: position, velocity

@@ -118,7 +118,7 @@ pub use outcome::{Outcome, Regime, RunReport, SteadyStateCheck, Unsettled};
 use crate::engine::PeriodEngine;
 use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::fixed_step::{FixedStepEngine, FixedStepOptions};
-use crate::error::Error;
+use crate::error::{Error, SimulationError};
 use crate::motor::Motor;
 use crate::scene::{EngineKind, Scene};
 use crate::signal::Signal;
@@ -200,4 +200,27 @@ pub fn simulate_with<E: PeriodEngine>(
     motor: &Motor,
 ) -> Result<Outcome, Error> {
     simulate_timed(engine, scene, motor, Instant::now())
+}
+
+/// The exact sensitivities of `v_inf` to every parameter of `scene`
+/// ([`crate::sensitivity::Parameter::all_for`]) at the steady state of its
+/// run `report` (docs/model.md section 14). Only the event engine's steady
+/// state has them.
+pub fn sensitivities(
+    scene: &Scene,
+    report: &RunReport,
+) -> Result<crate::sensitivity::Sensitivities, Error> {
+    if scene.run.engine != EngineKind::Event {
+        return Err(SimulationError::NoSensitivity(
+            "they are exact for the event engine only (run.engine = \"event\")".to_owned(),
+        )
+        .into());
+    }
+    let parameters = crate::sensitivity::Parameter::all_for(&scene.signal);
+    crate::sensitivity::of_steady_state(
+        &scene.signal,
+        &scene.motor,
+        report.steady.boundary_velocity,
+        &parameters,
+    )
 }

@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod ideal_load;
 pub mod mock;
 
 use std::path::{Path, PathBuf};
