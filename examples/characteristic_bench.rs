@@ -57,14 +57,13 @@ fn main() {
         }
     );
     println!(
-        "  v_inf evaluations {} (sampling {}, run-away limits {}, stall {}, held band {}, max power {}, slopes {}) + 1 start-up run",
+        "  v_inf evaluations {} (sampling {}, run-away limits {}, stall {}, held band {}, max power {}) + 1 start-up run; exact slopes at every point",
         n.v_inf(),
         n.sampling,
         n.run_away,
         n.stall,
         n.held_band,
         n.max_power,
-        n.slope
     );
     println!("  points {}", c.points.len());
     let s = &c.stall;

@@ -663,3 +663,53 @@ fn the_scene_s_own_extra_acceleration_is_replaced_by_the_load() {
         Outcome::RunAway { .. }
     ));
 }
+
+/// The exact slopes of the default characteristic against central
+/// differences of the exact `v_inf(F)` (step `1e-6 mu_0 F_c`): where the
+/// event structure is the same on both sides they agree to 1e-5 relative
+/// (the difference quotient's own error is about 1e-6 plus the truncation
+/// `h^2 v''' / 6`); at a one-sided point, the one-sided differences match
+/// the one-sided slopes.
+#[test]
+fn exact_slopes_match_differences_of_v_inf() {
+    let c = default_characteristic();
+    let scene = Scene::default();
+    let h = 1e-6 * 0.1736;
+    let (mut smooth, mut one_sided) = (0, 0);
+    for p in c.points.iter().step_by(7) {
+        let f = p.evaluation.load;
+        if p.evaluation.v_inf.is_none() || p.evaluation.regime == "stuck" {
+            continue;
+        }
+        let (lo, mid, hi) = (
+            v_inf_at(&scene, f - h).0,
+            v_inf_at(&scene, f).0,
+            v_inf_at(&scene, f + h).0,
+        );
+        match (p.slope.value, p.slope.left, p.slope.right) {
+            (Some(s), _, _) => {
+                smooth += 1;
+                let d = (hi - lo) / (2.0 * h);
+                assert!(
+                    (s - d).abs() <= 1e-5 * d.abs().max(1e-3),
+                    "F = {f}: {s} vs {d}"
+                );
+            }
+            (None, Some(l), Some(r)) => {
+                one_sided += 1;
+                let (dl, dr) = ((mid - lo) / h, (hi - mid) / h);
+                assert!(
+                    (l - dl).abs() <= 1e-3 * dl.abs().max(1e-3),
+                    "F = {f}: left {l} vs {dl}"
+                );
+                assert!(
+                    (r - dr).abs() <= 1e-3 * dr.abs().max(1e-3),
+                    "F = {f}: right {r} vs {dr}"
+                );
+            }
+            _ => {}
+        }
+    }
+    assert!(smooth >= 8, "{smooth} smooth points checked");
+    eprintln!("{smooth} smooth and {one_sided} one-sided slopes checked");
+}

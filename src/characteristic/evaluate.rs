@@ -30,8 +30,6 @@ pub(super) enum Purpose {
     HeldBand,
     /// The maximum output power.
     MaxPower,
-    /// The slope at each point.
-    Slope,
     /// The start-up from rest (one run that simulates the start-up).
     Transient,
 }
@@ -49,8 +47,6 @@ pub struct Counts {
     pub held_band: u64,
     /// For the maximum output power.
     pub max_power: u64,
-    /// For the slopes.
-    pub slope: u64,
     /// The start-up run.
     pub transient: u64,
 }
@@ -63,7 +59,6 @@ impl Counts {
             + self.stall
             + self.held_band
             + self.max_power
-            + self.slope
             + self.transient
     }
 
@@ -79,7 +74,6 @@ impl Counts {
             Purpose::Stall => &mut self.stall,
             Purpose::HeldBand => &mut self.held_band,
             Purpose::MaxPower => &mut self.max_power,
-            Purpose::Slope => &mut self.slope,
             Purpose::Transient => &mut self.transient,
         };
         *slot += 1;
@@ -100,6 +94,9 @@ pub struct Evaluation {
     pub v_inf: Option<f64>,
     /// Its estimated absolute error (m/s), when one holds.
     pub error: Option<f64>,
+    /// Slider velocity at the period boundary on the periodic orbit (m/s),
+    /// `None` without a steady state.
+    pub boundary_velocity: Option<f64>,
 }
 
 impl Evaluation {
@@ -204,6 +201,7 @@ impl Evaluator {
             regime: outcome.regime(),
             v_inf: report.map(|r| r.indicators.v_inf),
             error: report.and_then(|r| r.error.v_inf),
+            boundary_velocity: report.map(|r| r.steady.boundary_velocity),
         };
         self.memo.borrow_mut().insert(load.to_bits(), evaluation);
         Ok(evaluation)
@@ -221,6 +219,12 @@ impl Evaluator {
         self.cache
             .simulate(scene)
             .map_err(|source| CharacteristicError::Simulation { load, source })
+    }
+
+    /// The steady orbit's boundary velocity at a load evaluated before.
+    pub(super) fn boundary_velocity(&self, load: f64) -> Option<f64> {
+        let load = if load == 0.0 { 0.0 } else { load };
+        self.memo.borrow().get(&load.to_bits())?.boundary_velocity
     }
 
     /// Every evaluation so far (any order).

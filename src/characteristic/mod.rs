@@ -416,10 +416,7 @@ pub fn characteristic(
             points.push(Point {
                 x,
                 evaluation: e,
-                slope: Slope {
-                    value: None,
-                    method: slope::SlopeMethod::None,
-                },
+                slope: Slope::NONE,
                 marks: mark.into_iter().collect(),
             });
         }
@@ -445,7 +442,7 @@ pub fn characteristic(
     }
     points.sort_by(|a, b| a.x.total_cmp(&b.x));
     for p in &mut points {
-        p.slope = slope_at(&ev, p.evaluation.load, holding_force)?;
+        p.slope = slope_at(&ev, p.evaluation.load)?;
     }
 
     let incline = (axis == LoadAxis::Incline).then(|| {

@@ -1,40 +1,35 @@
-//! The slope `d v_inf / d F` of the characteristic at a load (m/(s N)).
-//!
-//! **Placeholder.** The exact derivative is `dv*/dg_t` carried through the
-//! period map (docs/model.md section 9, "Sensitivities"), with
-//! `d v_inf / d F = -(1 / m_s) d v_inf / d g_t`; until the engine provides
-//! it, [`slope_at`] is a central difference, and it is the only place to
-//! change when the exact derivative is available:
+//! The slope `d v_inf / d F` of the characteristic at a load (m/(s N)),
+//! exact: the sensitivity `d v_inf / d g_t` of the steady state carried
+//! through the period map's fixed point ([`crate::sensitivity`],
+//! docs/model.md section 14), with `g_t = -F / m_s`:
 //!
 //! ```text
-//! slope = (v_inf(F + h) - v_inf(F - h)) / (2 h),    h = 1e-6 mu_0 F_c,
+//! d v_inf / d F = -(1 / m_s) d v_inf / d g_t.
 //! ```
 //!
-//! one-sided (`(v_inf(F) - v_inf(F - h)) / h` or the mirror) where one
-//! neighbour has no steady state, and `None` where neither has. Its error
-//! is about `h^2 |v'''| / 6` plus `e / h` with `e` the error estimate of
-//! `v_inf` (a few 1e-13 m/s for the paper's motor, so about 1e-6
-//! relative), and it averages the two one-sided slopes across a kink
-//! (where the event structure changes). [`SlopeMethod`] says which
-//! formula gave each value.
+//! Where the event structure of the steady period changes at the load (a
+//! stick phase appears, a grazing, the edge of the held band) the slope
+//! is one-sided: `left` (towards smaller loads) and `right` (towards
+//! larger loads) are reported and `slope` is empty. Increasing `F`
+//! decreases `g_t`, so the left slope in `F` is the right derivative in
+//! `g_t`. Without a steady state there is no slope. No extra simulation is
+//! run: the derivative is carried through the steady period already found.
 
 use super::CharacteristicError;
-use super::evaluate::{Evaluator, Purpose};
+use super::evaluate::Evaluator;
+use crate::sensitivity::{self, Derivative, Parameter};
 
 /// How the slopes are found, as outputs state it.
-pub(super) const DESCRIPTION: &str = "central differences with step 1e-6 mu_0 F_c (one-sided at the ends of the curve), a placeholder for the exact derivative";
-
-/// Step of the difference, relative to the holding force `mu_0 F_c`.
-pub(super) const RELATIVE_STEP: f64 = 1e-6;
+pub(super) const DESCRIPTION: &str = "the exact sensitivity of the steady state (docs/model.md section 14), one-sided where the event structure changes";
 
 /// How a slope was computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SlopeMethod {
-    /// `(v(F + h) - v(F - h)) / (2 h)`.
-    CentralDifference,
-    /// A one-sided difference: one neighbour had no steady state.
-    OneSidedDifference,
-    /// No slope: no neighbour had a steady state.
+    /// The exact derivative; `v_inf` is smooth in the load here.
+    Exact,
+    /// The event structure changes at this load: exact one-sided slopes.
+    OneSided,
+    /// No slope: no steady state.
     None,
 }
 
@@ -42,8 +37,8 @@ impl SlopeMethod {
     /// The name in outputs.
     pub fn name(self) -> &'static str {
         match self {
-            SlopeMethod::CentralDifference => "central_difference",
-            SlopeMethod::OneSidedDifference => "one_sided_difference",
+            SlopeMethod::Exact => "exact",
+            SlopeMethod::OneSided => "one_sided",
             SlopeMethod::None => "none",
         }
     }
@@ -52,40 +47,58 @@ impl SlopeMethod {
 /// A slope and how it was found.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Slope {
-    /// `d v_inf / d F` (m/(s N)).
+    /// `d v_inf / d F` (m/(s N)) where `v_inf` is smooth in the load.
     pub value: Option<f64>,
-    /// The formula used.
+    /// Towards smaller loads (m/(s N)).
+    pub left: Option<f64>,
+    /// Towards larger loads (m/(s N)).
+    pub right: Option<f64>,
+    /// How it was found.
     pub method: SlopeMethod,
 }
 
-/// `d v_inf / d F` at `load` (N); `holding_force` is `mu_0 F_c` (see the
-/// module docs: a placeholder for the exact derivative).
-pub(super) fn slope_at(
-    ev: &Evaluator,
-    load: f64,
-    holding_force: f64,
-) -> Result<Slope, CharacteristicError> {
-    let h = RELATIVE_STEP * holding_force;
-    let v = |f: f64| -> Result<Option<f64>, CharacteristicError> {
-        Ok(ev.at(f, Purpose::Slope)?.v_inf)
+impl Slope {
+    /// No slope (no steady state).
+    pub(super) const NONE: Slope = Slope {
+        value: None,
+        left: None,
+        right: None,
+        method: SlopeMethod::None,
     };
-    let (left, here, right) = (v(load - h)?, v(load)?, v(load + h)?);
-    Ok(match (left, here, right) {
-        (Some(l), _, Some(r)) => Slope {
-            value: Some((r - l) / (2.0 * h)),
-            method: SlopeMethod::CentralDifference,
-        },
-        (Some(l), Some(c), None) => Slope {
-            value: Some((c - l) / h),
-            method: SlopeMethod::OneSidedDifference,
-        },
-        (None, Some(c), Some(r)) => Slope {
-            value: Some((r - c) / h),
-            method: SlopeMethod::OneSidedDifference,
-        },
-        _ => Slope {
+}
+
+/// `d v_inf / d F` at `load` (N), from the steady state found there.
+pub(super) fn slope_at(ev: &Evaluator, load: f64) -> Result<Slope, CharacteristicError> {
+    let Some(boundary_velocity) = ev.boundary_velocity(load) else {
+        return Ok(Slope::NONE);
+    };
+    let scene = ev.scene_at(load);
+    let found = sensitivity::of_steady_state(
+        &scene.signal,
+        &scene.motor,
+        boundary_velocity,
+        &[Parameter::ExtraAcceleration],
+    )
+    .map_err(|source| CharacteristicError::Simulation { load, source })?;
+    let Some(entry) = found.get(Parameter::ExtraAcceleration) else {
+        return Ok(Slope::NONE);
+    };
+    let per_force = |d: Option<f64>| d.map(|d| -d / ev.slider_mass()).map(|s| s + 0.0);
+    Ok(match entry.derivative {
+        Derivative::Smooth(d) => {
+            let s = per_force(Some(d));
+            Slope {
+                value: s,
+                left: s,
+                right: s,
+                method: SlopeMethod::Exact,
+            }
+        }
+        ref d @ Derivative::OneSided { .. } => Slope {
             value: None,
-            method: SlopeMethod::None,
+            left: per_force(d.right()),
+            right: per_force(d.left()),
+            method: SlopeMethod::OneSided,
         },
     })
 }

@@ -73,6 +73,8 @@ pub(crate) fn to_json(c: &Characteristic, scene: &Scene) -> Value {
                 "v_inf_error": option(e.error),
                 "output_power": option(e.output_power()),
                 "slope": option(p.slope.value),
+                "slope_left": option(p.slope.left),
+                "slope_right": option(p.slope.right),
                 "slope_method": p.slope.method.name(),
                 "marks": p.marks.iter().map(|m| m.name()).collect::<Vec<_>>(),
             })
@@ -140,7 +142,6 @@ pub(crate) fn to_json(c: &Characteristic, scene: &Scene) -> Value {
             "stall": c.counts.stall,
             "held_band": c.counts.held_band,
             "max_power": c.counts.max_power,
-            "slope": c.counts.slope,
             "transient": c.counts.transient,
         },
         "points": points,
@@ -182,6 +183,8 @@ pub(crate) fn to_csv(c: &Characteristic, scene: &Scene) -> String {
         "error_v_inf",
         "output_power",
         "slope",
+        "slope_left",
+        "slope_right",
         "slope_method",
         "marks",
     ]);
@@ -201,6 +204,8 @@ pub(crate) fn to_csv(c: &Characteristic, scene: &Scene) -> String {
             cell(e.error),
             cell(e.output_power()),
             cell(p.slope.value),
+            cell(p.slope.left),
+            cell(p.slope.right),
             p.slope.method.name().to_owned(),
             marks.join(";"),
         ]);
@@ -387,7 +392,7 @@ pub(crate) fn to_text(c: &Characteristic) -> String {
     let n = &c.counts;
     let _ = writeln!(
         t,
-        "\n{} simulations ({} of v_inf: sampling {}, run-away {}, stall {}, held band {}, max power {}, slopes {}; start-up {}){}; {:.1} ms\nslopes: {}",
+        "\n{} simulations ({} of v_inf: sampling {}, run-away {}, stall {}, held band {}, max power {}; start-up {}){}; {:.1} ms\nslopes: {}",
         n.total(),
         n.v_inf(),
         n.sampling,
@@ -395,7 +400,6 @@ pub(crate) fn to_text(c: &Characteristic) -> String {
         n.stall,
         n.held_band,
         n.max_power,
-        n.slope,
         n.transient,
         if c.sampling_complete {
             ""

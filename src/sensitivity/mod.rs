@@ -195,13 +195,12 @@ pub fn of_steady_state(
     let selections = selection::selections(&ctx, &orbit, &candidates, &by_v.nodes, reach);
     let mut entries = Vec::with_capacity(parameters.len());
     for &parameter in parameters {
-        let value =
-            parameter
-                .value(spec, params)
-                .ok_or_else(|| crate::error::ParamError::Inconsistent {
-                    field: parameter.to_string(),
-                    reason: "the scene's signal has no such parameter".to_owned(),
-                })?;
+        let value = parameter.value(spec, params).ok_or_else(|| {
+            crate::error::ParamError::Inconsistent {
+                field: parameter.to_string(),
+                reason: "the scene's signal has no such parameter".to_owned(),
+            }
+        })?;
         let dir = parameter.tangent(spec, &motor, &signal)?;
         let own = ctx.branch(&orbit, &orbit.pieces, &dir)?;
         let scale = parameter.scale(spec, &motor);
