@@ -8,7 +8,7 @@
 //! output (the table, the figure, the figure's CSV) is the scene or
 //! another output, and that the figure's format and directory are usable.
 
-use super::{Failure, SceneOptions, Streams, refuse_output_over_input, write_out};
+use super::{Failure, SceneOptions, Streams, refuse_outputs, write_out};
 use crate::characteristic::{self, LoadAxis, Options, table};
 use crate::plot::{Format, Preset};
 use clap::{Args, ValueEnum};
@@ -89,19 +89,7 @@ fn check_outputs(args: &CharacteristicArgs) -> Result<(), Failure> {
         .flatten()
         .map(PathBuf::as_path)
         .collect();
-    for (i, output) in outputs.iter().enumerate() {
-        refuse_output_over_input(output, &inputs)?;
-        if let Some(other) = outputs[..i]
-            .iter()
-            .find(|o| refuse_output_over_input(output, &[o]).is_err())
-        {
-            return Err(format!(
-                "{} is named as two outputs (also as {}): name another file for one of them",
-                output.display(),
-                other.display()
-            ));
-        }
-    }
+    refuse_outputs(&outputs, &inputs)?;
     if let Some(figure) = &args.figure {
         Format::of(figure).map_err(|e| e.to_string())?;
         let dir = match figure.parent() {

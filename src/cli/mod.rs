@@ -231,6 +231,26 @@ pub(crate) fn refuse_output_over_input(output: &Path, inputs: &[&Path]) -> Resul
     Ok(())
 }
 
+/// Refuses every output that is one of `inputs`
+/// ([`refuse_output_over_input`]) or names the same file as an earlier
+/// output. Call it before any work is done.
+pub(crate) fn refuse_outputs(outputs: &[&Path], inputs: &[&Path]) -> Result<(), Failure> {
+    for (i, output) in outputs.iter().enumerate() {
+        refuse_output_over_input(output, inputs)?;
+        if let Some(other) = outputs[..i]
+            .iter()
+            .find(|o| refuse_output_over_input(output, &[o]).is_err())
+        {
+            return Err(format!(
+                "{} is named as two outputs (also as {}): name another file for one of them",
+                output.display(),
+                other.display()
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The binary's entry point: [`main_with`] on the process's arguments and
 /// standard streams.
 pub fn main() -> ExitCode {

@@ -10,7 +10,7 @@
 //! output, the scene, its `[optimize]` table and the flags; a failure is
 //! one line and writes nothing.
 
-use super::{Failure, SceneOptions, Streams, refuse_output_over_input, write_out};
+use super::{Failure, SceneOptions, Streams, refuse_outputs, write_out};
 use crate::optimize::map::{self, MapGrid};
 use crate::optimize::{self, OptimizeTable, Overrides, Settings, output};
 use crate::plot::{Format, Preset, optimize as figures};
@@ -128,20 +128,11 @@ fn check_outputs(args: &OptimizeArgs) -> Result<(), Failure> {
         outputs.push(("--map", path.clone()));
     }
     let inputs: Vec<&Path> = args.scene.iter().map(PathBuf::as_path).collect();
-    for (i, (flag, path)) in outputs.iter().enumerate() {
+    for (flag, path) in &outputs {
         check_directory(flag, path)?;
-        refuse_output_over_input(path, &inputs)?;
-        if let Some((_, other)) = outputs[..i]
-            .iter()
-            .find(|(_, o)| refuse_output_over_input(path, &[o]).is_err())
-        {
-            return Err(format!(
-                "{} is named as two outputs (also as {}): name another file for one of them",
-                path.display(),
-                other.display()
-            ));
-        }
     }
+    let paths: Vec<&Path> = outputs.iter().map(|(_, p)| p.as_path()).collect();
+    refuse_outputs(&paths, &inputs)?;
     Ok(())
 }
 

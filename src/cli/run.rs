@@ -1,7 +1,7 @@
 //! `stickslip run [SCENE] [--json] [-o FILE]`: one run of a scene, printed
 //! as a summary or as one JSON object (keys in `docs/interface.md`).
 
-use super::{Failure, SceneOptions, Streams, refuse_output_over_input, write_out};
+use super::{Failure, SceneOptions, Streams, refuse_outputs, write_out};
 use crate::{report, scene::Scene, simulation};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -75,19 +75,7 @@ pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failur
         .flatten()
         .map(PathBuf::as_path)
         .collect();
-    for (i, output) in outputs.iter().enumerate() {
-        refuse_output_over_input(output, &inputs)?;
-        if let Some(other) = outputs[..i]
-            .iter()
-            .find(|o| refuse_output_over_input(output, &[o]).is_err())
-        {
-            return Err(format!(
-                "{} is named as two outputs (also as {}): name another file for one of them",
-                output.display(),
-                other.display()
-            ));
-        }
-    }
+    refuse_outputs(&outputs, &inputs)?;
     let mut scene = load(args.scene.as_deref())?;
     args.options.apply(&mut scene, streams);
     let request = crate::export::TrajectoryRequest {
