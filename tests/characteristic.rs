@@ -6,8 +6,8 @@
 
 mod common;
 
-use common::{assert_rel, scratch};
-use std::process::{Command, Output};
+use common::{assert_rel, scratch, stickslip};
+use std::process::Output;
 use std::sync::OnceLock;
 use stickslip::Indicator;
 use stickslip::Outcome;
@@ -434,14 +434,6 @@ fn incline_loads_are_the_weight_component() {
     let i = c.incline.unwrap();
     assert_eq!(i.stall_angle, None);
     assert_eq!(i.holding_angle, 90.0);
-}
-
-fn stickslip(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
 }
 
 fn stderr(o: &Output) -> String {

@@ -5,20 +5,15 @@
 //! the exact invariances of the parametrisation; limits hold; bad input is
 //! one line; no output overwrites an input.
 
+mod common;
+
+use common::stickslip;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 use stickslip::optimize::{Objective, OptimizeTable, Overrides, Settings, Shape};
 use stickslip::optimize::{Param, gradient};
 use stickslip::{Motor, Scene};
 use stickslip::{Signal, SignalSpec};
-
-fn stickslip(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()

@@ -1,6 +1,10 @@
 //! Figures (`src/plot/`): the same inputs give the same bytes, every figure
 //! is written with its CSV beside it, and the CSV is rectangular.
 
+#[path = "support/grid.rs"]
+mod grid;
+
+use grid::grid;
 use stickslip::Motor;
 use stickslip::plot::performance::{GridPoint, figures6_7};
 use stickslip::plot::{Figure, PlotError, Preset, scaling, signals};
@@ -44,33 +48,6 @@ fn signal_figures_are_byte_identical_and_complete() {
         }
         assert!(check_csv(&a) > 0, "{} has data", a.name);
     }
-}
-
-/// A synthetic section-7 grid: both sigma settings, two levels, n = 2..4.
-pub fn grid() -> Vec<GridPoint> {
-    let mut points = Vec::new();
-    for level in [3.0, 6.0] {
-        for n in 2..=4 {
-            for sigma in [false, true] {
-                let x = level / n as f64 + if sigma { 1.0 } else { 0.0 };
-                points.push(GridPoint {
-                    level,
-                    n,
-                    sigma,
-                    f_max: level * 1574.8,
-                    period: 1e-4 * n as f64 / level,
-                    v_inf: 0.01 * x,
-                    startup_periods: Some(n as u64 + 1),
-                    smoothness: x,
-                    durability: 0.3 + 0.01 * x,
-                    stiction_fraction: 0.0,
-                    stiction_fraction_steady: 0.0,
-                    velocity_per_power: Some(1e-4 * x),
-                });
-            }
-        }
-    }
-    points
 }
 
 /// Figures 6 and 7 from a synthetic grid: both figures, one CSV row per

@@ -5,41 +5,18 @@
 //! marker), and bands (which have neither) differ in lightness, so every
 //! figure reads in greyscale; the program version is in the metadata.
 
+#[path = "support/grid.rs"]
+mod grid;
+
+use grid::grid;
 use stickslip::Motor;
 use stickslip::SignalSpec;
 use stickslip::plot::motion::{self, Row, Span};
-use stickslip::plot::performance::{GridPoint, figures6_7};
+use stickslip::plot::performance::figures6_7;
 use stickslip::plot::sweep::{SweepSpec, sweep_figure};
 use stickslip::plot::{Figure, PRODUCER, Preset, scaling, signals, timeline};
 
 const PT_PER_MM: f64 = 72.0 / 25.4;
-
-/// A synthetic section-7 grid: both sigma settings, two levels, n = 2..4.
-fn grid() -> Vec<GridPoint> {
-    let mut points = Vec::new();
-    for level in [3.0, 6.0] {
-        for n in 2..=4 {
-            for sigma in [false, true] {
-                let x = level / n as f64 + f64::from(u8::from(sigma));
-                points.push(GridPoint {
-                    level,
-                    n,
-                    sigma,
-                    f_max: level * 1574.8,
-                    period: 1e-4 * n as f64 / level,
-                    v_inf: 0.01 * x,
-                    startup_periods: Some(n as u64 + 1),
-                    smoothness: x,
-                    durability: 0.3 + 0.01 * x,
-                    stiction_fraction: 0.0,
-                    stiction_fraction_steady: 0.0,
-                    velocity_per_power: Some(1e-4 * x),
-                });
-            }
-        }
-    }
-    points
-}
 
 /// A sweep output with a failed case and a run-away one (a `regime`
 /// column), as another tool might write it.

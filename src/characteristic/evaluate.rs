@@ -227,6 +227,18 @@ impl Evaluator {
         self.memo.borrow().get(&load.to_bits())?.boundary_velocity
     }
 
+    /// [`Evaluator::at`] for an `argmin` cost function: a failure is kept in
+    /// `failure` (argmin's own error carries only its text) and returned as
+    /// argmin's error, which stops the solver.
+    pub(super) fn at_in_solver(
+        &self,
+        load: f64,
+        purpose: Purpose,
+        failure: &RefCell<Option<CharacteristicError>>,
+    ) -> Result<Evaluation, argmin::core::Error> {
+        self.at(load, purpose).map_err(|e| keep(failure, e))
+    }
+
     /// Every evaluation so far (any order).
     pub(super) fn evaluations(&self) -> Vec<Evaluation> {
         self.memo.borrow().values().copied().collect()
@@ -236,4 +248,15 @@ impl Evaluator {
     pub(super) fn counts(&self) -> Counts {
         *self.counts.borrow()
     }
+}
+
+/// Keeps `error` in `failure` and returns it as argmin's error, which
+/// carries only its text and stops the solver.
+pub(super) fn keep(
+    failure: &RefCell<Option<CharacteristicError>>,
+    error: CharacteristicError,
+) -> argmin::core::Error {
+    let text = error.to_string();
+    *failure.borrow_mut() = Some(error);
+    argmin::core::Error::msg(text)
 }

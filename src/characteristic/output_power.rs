@@ -16,7 +16,7 @@
 //! `v_inf`.
 
 use super::CharacteristicError;
-use super::evaluate::{Evaluation, Evaluator, Purpose};
+use super::evaluate::{Evaluation, Evaluator, Purpose, keep};
 use argmin::core::{CostFunction, Executor, State};
 use argmin::solver::brent::BrentOpt;
 use std::cell::RefCell;
@@ -48,18 +48,18 @@ impl CostFunction for NegativePower<'_> {
     type Output = f64;
 
     fn cost(&self, load: &f64) -> Result<f64, argmin::core::Error> {
-        let fail = |e: CharacteristicError| {
-            let text = e.to_string();
-            *self.failure.borrow_mut() = Some(e);
-            argmin::core::Error::msg(text)
-        };
-        let e = self.ev.at(*load, Purpose::MaxPower).map_err(fail)?;
+        let e = self
+            .ev
+            .at_in_solver(*load, Purpose::MaxPower, self.failure)?;
         match e.output_power() {
             Some(p) => Ok(-p),
-            None => Err(fail(CharacteristicError::NoSteadyState {
-                load: *load,
-                regime: e.regime,
-            })),
+            None => Err(keep(
+                self.failure,
+                CharacteristicError::NoSteadyState {
+                    load: *load,
+                    regime: e.regime,
+                },
+            )),
         }
     }
 }

@@ -41,7 +41,7 @@
 
 use super::CharacteristicError;
 use super::domain::{Limit, boundary, limit_between};
-use super::evaluate::{Evaluation, Evaluator, Purpose};
+use super::evaluate::{Evaluation, Evaluator, Purpose, keep};
 use argmin::core::{CostFunction, Executor, State};
 use argmin::solver::brent::BrentRoot;
 use std::cell::RefCell;
@@ -253,19 +253,17 @@ impl CostFunction for SignedVelocity<'_> {
     type Output = f64;
 
     fn cost(&self, load: &f64) -> Result<f64, argmin::core::Error> {
-        let fail = |e: CharacteristicError| {
-            let text = e.to_string();
-            *self.failure.borrow_mut() = Some(e);
-            argmin::core::Error::msg(text)
-        };
-        let e = self.ev.at(*load, Purpose::Stall).map_err(fail)?;
+        let e = self.ev.at_in_solver(*load, Purpose::Stall, self.failure)?;
         match (e.sign(), e.v_inf) {
             (Some(0), _) => Ok(0.0),
             (_, Some(v)) => Ok(self.s * v),
-            _ => Err(fail(CharacteristicError::NoSteadyState {
-                load: *load,
-                regime: e.regime,
-            })),
+            _ => Err(keep(
+                self.failure,
+                CharacteristicError::NoSteadyState {
+                    load: *load,
+                    regime: e.regime,
+                },
+            )),
         }
     }
 }
