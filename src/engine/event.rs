@@ -128,6 +128,11 @@ pub struct EventEngine<'s> {
     tol_x: f64,
     tol_t: f64,
     tol_f: f64,
+    /// The largest `|v_R|` (`signal.velocity_scale()`, at least the
+    /// smallest positive number).
+    v_scale: f64,
+    /// Bound on the rounding of a computed rod velocity.
+    gap_rounding: f64,
     max_events: u64,
     /// Rod state at phase 0 (right limit) and at the period end (left limit).
     rod_at_start: RodState,
@@ -166,17 +171,20 @@ impl<'s> EventEngine<'s> {
         let jump = signal.jump_phase();
         let band = band_pieces(&plus, &minus, jump);
         let v_scale = signal.velocity_scale().max(f64::MIN_POSITIVE);
+        let envelope = signal.acceleration_envelope();
         Self {
             signal,
             period,
-            slip_forward: SlipPieces::new(fwd),
-            slip_backward: SlipPieces::new(bwd),
+            slip_forward: SlipPieces::new(fwd, a_fwd, &envelope),
+            slip_backward: SlipPieces::new(bwd, a_bwd, &envelope),
             band,
             jump,
             contact: Contact::new(motor, options.velocity_tolerance * v_scale),
             tol_x: options.velocity_tolerance * v_scale * period,
             tol_t: options.time_tolerance * period,
             tol_f: 4.0 * f64::EPSILON * v_scale,
+            v_scale,
+            gap_rounding: signal.velocity_rounding(),
             max_events: options.max_events_per_period,
             rod_at_start: signal.state(0.0),
             rod_at_end: signal.state_before(period),

@@ -39,9 +39,9 @@ pub struct FourierSignal {
     /// `k^2 w^2 B_k` (acceleration) for the hot path.
     vel: Vec<(f64, f64)>,
     acc: Vec<(f64, f64)>,
-    /// Phases of the roots of `a_R` (the extrema of `v_R`), found once on
-    /// demand.
-    acceleration_zeros: OnceLock<Vec<f64>>,
+    /// Phases of the roots of `a_R` (the extrema of `v_R`) and bounds on
+    /// `|a_R|` on slices of the period, found once on demand.
+    acceleration_zeros: OnceLock<(Vec<f64>, Vec<f64>)>,
     /// `min v_R` and `max v_R`, from the roots of `a_R`, found once: every
     /// rounding bound and the engine's tolerances scale with them.
     velocity_range: OnceLock<(f64, f64)>,
@@ -144,19 +144,34 @@ impl FourierSignal {
     /// Phases in `[0, T)` where `a_R = level`, sorted: the roots of a
     /// trigonometric polynomial. The roots of `a_R = 0` are kept once found.
     pub fn acceleration_roots(&self, level: f64) -> Vec<f64> {
-        let find = || {
-            let mut poly = self.acceleration_poly();
-            poly.c0 -= level;
-            poly.roots()
-                .into_iter()
-                .map(|theta| theta / self.omega)
-                .collect::<Vec<f64>>()
-        };
         if level == 0.0 {
-            self.acceleration_zeros.get_or_init(find).clone()
-        } else {
-            find()
+            return self.acceleration_zeros().0.clone();
         }
+        let mut poly = self.acceleration_poly();
+        poly.c0 -= level;
+        poly.roots()
+            .into_iter()
+            .map(|theta| theta / self.omega)
+            .collect()
+    }
+
+    /// The roots of `a_R` (phases) and the envelope of `|a_R|` on `N` equal
+    /// slices of the period from the same Taylor models
+    /// (`TrigPoly::roots_and_envelope`), found once.
+    fn acceleration_zeros(&self) -> &(Vec<f64>, Vec<f64>) {
+        self.acceleration_zeros.get_or_init(|| {
+            let (roots, bounds) = self.acceleration_poly().roots_and_envelope();
+            let phases = roots.into_iter().map(|theta| theta / self.omega).collect();
+            (phases, bounds)
+        })
+    }
+
+    /// Bounds on `|a_R|` on `N` equal slices of the period (entry `i` for
+    /// phases in `[i T/N, (i + 1) T/N]`), each at most
+    /// [`FourierSignal::acceleration_bound`]. Found with the roots of `a_R`.
+    pub(crate) fn acceleration_slices(&self) -> Vec<f64> {
+        let cap = self.acceleration_bound();
+        self.acceleration_zeros().1.iter().map(|b| b.min(cap)).collect()
     }
 
     /// Smallest and largest rod velocity over a period, exact: the values at
@@ -254,6 +269,21 @@ impl FourierSignal {
     /// `sum_k (k w_0)^2 d_k`, a bound on `|a_R|` (m/s^2).
     pub fn acceleration_bound(&self) -> f64 {
         self.acc.iter().map(|(a, b)| a.hypot(*b)).sum()
+    }
+
+    /// A bound on the rounding error of [`FourierSignal::velocity`] at any
+    /// phase: `64 ε Σ_k √k |k w (A_k, B_k)|`, four times the rounding level
+    /// of a trigonometric polynomial (`TrigPoly::eval_error_bound`, docs/model.md
+    /// section 8), plus the error of the phase `w tau` itself,
+    /// `2 ε T Σ |k^2 w^2 (A_k, B_k)|` (the slope of `v_R` times its rounding).
+    pub(crate) fn velocity_rounding(&self) -> f64 {
+        let sum: f64 = self
+            .vel
+            .iter()
+            .enumerate()
+            .map(|(i, (a, b))| ((i + 1) as f64).sqrt() * a.hypot(*b))
+            .sum();
+        64.0 * f64::EPSILON * sum + 2.0 * f64::EPSILON * self.period * self.acceleration_bound()
     }
 
     /// Position at phase `tau` (m).

@@ -260,6 +260,53 @@ impl Partition {
     }
 }
 
+/// Upper bounds of `|a_R|` on `N` equal slices of the period, for bounding
+/// how far the rod velocity can move over a stretch of phase without
+/// evaluating it. Each slice holds the largest bound of itself and its two
+/// neighbours, so that a phase whose slice index is off by one through
+/// rounding is still covered.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Envelope {
+    /// Width of a slice (s).
+    step: f64,
+    bounds: Vec<f64>,
+}
+
+impl Envelope {
+    /// The envelope of `slices` (entry `i` bounds `|a_R|` on
+    /// `[i T/N, (i + 1) T/N]`) over a period `period`.
+    pub(crate) fn new(period: f64, slices: Vec<f64>) -> Self {
+        let n = slices.len();
+        let bounds = (0..n)
+            .map(|i| {
+                let prev = slices[(i + n - 1) % n];
+                let next = slices[(i + 1) % n];
+                slices[i].max(prev).max(next)
+            })
+            .collect();
+        Self {
+            step: period / n as f64,
+            bounds,
+        }
+    }
+
+    /// An upper bound on `∫ |a_R| dtau` over `[start, end]` within a period
+    /// (`start <= end`).
+    pub(crate) fn integral(&self, start: f64, end: f64) -> f64 {
+        let last = self.bounds.len() - 1;
+        let index = |t: f64| ((t / self.step).floor().max(0.0) as usize).min(last);
+        let (i0, i1) = (index(start), index(end));
+        if i0 == i1 {
+            return self.bounds[i0] * (end - start);
+        }
+        let mut sum = self.bounds[i0] * ((i0 + 1) as f64 * self.step - start);
+        for b in &self.bounds[i0 + 1..i1] {
+            sum += b * self.step;
+        }
+        sum + self.bounds[i1] * (end - i1 as f64 * self.step)
+    }
+}
+
 /// Where the rod is at an instant: position, velocity, acceleration.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RodState {
@@ -498,6 +545,27 @@ impl Signal {
                 (v.min(0.0), v.max(0.0))
             }
             Signal::Fourier(s) => s.velocity_range(),
+        }
+    }
+
+    /// The [`Envelope`] of `|a_R|`: for the ideal signal `|a_R|` over the
+    /// whole period; for a series the bounds of the root finder's Taylor
+    /// models on `~pi n / 2` slices (`FourierSignal::acceleration_slices`).
+    pub(crate) fn acceleration_envelope(&self) -> Envelope {
+        match self {
+            Signal::Ideal(s) => Envelope::new(s.period(), vec![s.a_r().abs()]),
+            Signal::Fourier(s) => Envelope::new(s.period(), s.acceleration_slices()),
+        }
+    }
+
+    /// A bound on the rounding error of a computed rod velocity
+    /// ([`Signal::velocity`], [`Signal::velocity_before`]) at any phase:
+    /// for a series see `FourierSignal::velocity_rounding`; for the ideal
+    /// signal `v_R = a_R tau` is one product, bounded by `8 ε |a_R| T`.
+    pub(crate) fn velocity_rounding(&self) -> f64 {
+        match self {
+            Signal::Ideal(s) => 8.0 * f64::EPSILON * s.a_r().abs() * s.period(),
+            Signal::Fourier(s) => s.velocity_rounding(),
         }
     }
 

@@ -33,7 +33,10 @@ type Coeffs = [f64; ORDER];
 
 /// Candidate roots (not wrapped, possibly repeated) of the normalised `p`,
 /// whose terms above degree `n` are negligible; `eta` its rounding level.
-pub(super) fn candidates(p: &TrigPoly, n: usize, eta: f64) -> Vec<f64> {
+/// Also returns, for each top-level interval `i` (centre `(i + 1/2) 2π/N`),
+/// a bound on `max |p|` over it: `Σ_j |g_j| + δ_0` of its model (module
+/// docs of the parent, step 1: the model plus its error bound covers `p`).
+pub(super) fn candidates(p: &TrigPoly, n: usize, eta: f64) -> (Vec<f64>, Vec<f64>) {
     Finder::new(p, n, eta).run()
 }
 
@@ -149,13 +152,17 @@ impl<'a> Finder<'a> {
         }
     }
 
-    fn run(&self) -> Vec<f64> {
+    fn run(&self) -> (Vec<f64>, Vec<f64>) {
         let mut out = Vec::new();
         let mut unresolved = Vec::new();
+        let mut bounds = Vec::with_capacity(self.count);
+        // the sum's own rounding (ORDER terms) is below `ORDER ε` of it
+        let inflate = 1.0 + 2.0 * ORDER as f64 * EPS;
         let h = TAU / self.count as f64;
         for i in 0..self.count {
             let m = (i as f64 + 0.5) * h;
             let g = self.taylor(m);
+            bounds.push((g.iter().map(|x| x.abs()).sum::<f64>() + self.delta[0]) * inflate);
             let mut stack = vec![(0.0, 1.0)];
             while let Some((c, rho)) = stack.pop() {
                 let (class, piece) = self.classify(&g, m, c, rho);
@@ -174,7 +181,7 @@ impl<'a> Finder<'a> {
             }
         }
         self.resolve_clusters(unresolved, &mut out);
-        out
+        (out, bounds)
     }
 
     /// `g_j = r^j p^{(j)}(m) / j!`, `j < ORDER`: the Taylor coefficients of

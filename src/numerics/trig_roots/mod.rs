@@ -353,15 +353,35 @@ impl TrigPoly {
     ///
     /// Cost: `O(n^2)`; about 0.2 ms for `n = 64`, 2-3 ms for `n = 256`.
     pub fn roots(&self) -> Vec<f64> {
-        let Some(p) = self.normalized() else {
-            return Vec::new();
+        self.roots_and_envelope().0
+    }
+
+    /// [`TrigPoly::roots`], and an envelope of `|p|` from the same Taylor
+    /// models at no extra cost: with `N` the length of the second vector,
+    /// its entry `i` bounds `|p(θ)|` for `θ` in `[i 2π/N, (i + 1) 2π/N]`
+    /// (the model of that interval plus its error bound, `Σ_j |g_j| + δ_0`,
+    /// module docs, step 1). Each entry is close to the largest `|p|` on its
+    /// interval where `p` varies slowly over it, and at most about `e^2`
+    /// times the largest `|p|` within `2/n` of it. A polynomial without
+    /// significant harmonics gives one entry, `|c0|` plus the coefficients'
+    /// sum; non-finite coefficients give one infinite entry.
+    pub fn roots_and_envelope(&self) -> (Vec<f64>, Vec<f64>) {
+        let Some((p, e)) = self.normalized_with_exponent() else {
+            let all_zero = self.c0 == 0.0 && self.degree() == 0;
+            return (Vec::new(), vec![if all_zero { 0.0 } else { f64::INFINITY }]);
         };
         let Some(n) = p.significant_degree() else {
-            return Vec::new();
+            return (Vec::new(), vec![self.c0.abs() + self.coefficient_mass()]);
         };
         let eta = p.eval_error_bound();
-        let found = isolate::candidates(&p, n, eta);
-        p.merge(found.into_iter().map(wrap).collect(), eta)
+        let (found, bounds) = isolate::candidates(&p, n, eta);
+        let roots = p.merge(found.into_iter().map(wrap).collect(), eta);
+        (roots, bounds.into_iter().map(|b| ldexp(b, -e)).collect())
+    }
+
+    /// `Σ_k (|a_k| + |b_k|)`.
+    fn coefficient_mass(&self) -> f64 {
+        self.a.iter().zip(&self.b).map(|(a, b)| a.abs() + b.abs()).sum()
     }
 
     /// The previous root finder, kept as an independent test oracle for
@@ -386,6 +406,11 @@ impl TrigPoly {
     /// `[1, 2)` (exact: the roots are unchanged and nothing overflows or
     /// underflows); `None` if a coefficient is not finite or all are zero.
     fn normalized(&self) -> Option<TrigPoly> {
+        self.normalized_with_exponent().map(|(p, _)| p)
+    }
+
+    /// [`TrigPoly::normalized`] and the exponent `e` it scaled by (`2^e`).
+    fn normalized_with_exponent(&self) -> Option<(TrigPoly, i32)> {
         let all = std::iter::once(&self.c0).chain(&self.a).chain(&self.b);
         if all.clone().any(|x| !x.is_finite()) {
             return None;
@@ -395,11 +420,12 @@ impl TrigPoly {
             return None;
         }
         let e = -(scale.log2().floor() as i32);
-        Some(TrigPoly {
+        let p = TrigPoly {
             c0: ldexp(self.c0, e),
             a: self.a.iter().map(|&x| ldexp(x, e)).collect(),
             b: self.b.iter().map(|&x| ldexp(x, e)).collect(),
-        })
+        };
+        Some((p, e))
     }
 
     /// The degree without the leading pairs with
