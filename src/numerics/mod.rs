@@ -13,4 +13,4 @@ pub(crate) mod line_fit;
 pub(crate) mod trig_roots;
 
 pub use compensated::CompensatedSum;
-pub use trig_roots::TrigPoly;
+pub use trig_roots::{LevelRoots, TrigPoly};

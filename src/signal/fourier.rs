@@ -21,7 +21,7 @@ use super::RodState;
 use crate::error::{Num, ParamError};
 use crate::motor::Motor;
 use crate::numerics::bracket;
-use crate::numerics::trig_roots::TrigPoly;
+use crate::numerics::trig_roots::{LevelRoots, TrigPoly};
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
@@ -42,6 +42,8 @@ pub struct FourierSignal {
     /// Phases of the roots of `a_R` (the extrema of `v_R`) and bounds on
     /// `|a_R|` on slices of the period, found once on demand.
     acceleration_zeros: OnceLock<(Vec<f64>, Vec<f64>)>,
+    /// The root finder of `a_R = c` shared by every threshold `c`.
+    acceleration_levels: OnceLock<LevelRoots>,
     /// `min v_R` and `max v_R`, from the roots of `a_R`, found once: every
     /// rounding bound and the engine's tolerances scale with them.
     velocity_range: OnceLock<(f64, f64)>,
@@ -136,23 +138,31 @@ impl FourierSignal {
             vel,
             acc,
             acceleration_zeros: OnceLock::new(),
+            acceleration_levels: OnceLock::new(),
             velocity_range: OnceLock::new(),
             extrema: OnceLock::new(),
         }
     }
 
     /// Phases in `[0, T)` where `a_R = level`, sorted: the roots of a
-    /// trigonometric polynomial. The roots of `a_R = 0` are kept once found.
+    /// trigonometric polynomial. Every level shares the Taylor models of
+    /// `a_R` (`numerics::LevelRoots`); the roots of `a_R = 0` are kept once
+    /// found.
     pub fn acceleration_roots(&self, level: f64) -> Vec<f64> {
         if level == 0.0 {
             return self.acceleration_zeros().0.clone();
         }
-        let mut poly = self.acceleration_poly();
-        poly.c0 -= level;
-        poly.roots()
+        self.acceleration_levels()
+            .roots(level)
             .into_iter()
             .map(|theta| theta / self.omega)
             .collect()
+    }
+
+    /// The root finder of `a_R = level` for every level, built once.
+    fn acceleration_levels(&self) -> &LevelRoots {
+        self.acceleration_levels
+            .get_or_init(|| self.acceleration_poly().levels())
     }
 
     /// The roots of `a_R` (phases) and the envelope of `|a_R|` on `N` equal
@@ -160,7 +170,7 @@ impl FourierSignal {
     /// (`TrigPoly::roots_and_envelope`), found once.
     fn acceleration_zeros(&self) -> &(Vec<f64>, Vec<f64>) {
         self.acceleration_zeros.get_or_init(|| {
-            let (roots, bounds) = self.acceleration_poly().roots_and_envelope();
+            let (roots, bounds) = self.acceleration_levels().roots_and_envelope(0.0);
             let phases = roots.into_iter().map(|theta| theta / self.omega).collect();
             (phases, bounds)
         })

@@ -29,7 +29,7 @@ const MAX_ITERS: usize = 100;
 const CLUSTER_SAMPLES: usize = 8;
 
 /// Coefficients of a Taylor model in its scaled variable.
-type Coeffs = [f64; ORDER];
+pub(super) type Coeffs = [f64; ORDER];
 
 /// Candidate roots (not wrapped, possibly repeated) of the normalised `p`,
 /// whose terms above degree `n` are negligible; `eta` its rounding level.
@@ -37,7 +37,31 @@ type Coeffs = [f64; ORDER];
 /// a bound on `max |p|` over it: `Σ_j |g_j| + δ_0` of its model (module
 /// docs of the parent, step 1: the model plus its error bound covers `p`).
 pub(super) fn candidates(p: &TrigPoly, n: usize, eta: f64) -> (Vec<f64>, Vec<f64>) {
-    Finder::new(p, n, eta).run()
+    Finder::new(p, n, eta).run(None)
+}
+
+/// [`candidates`] with the models' sums over the harmonics given
+/// (`models[i]` is [`Finder::harmonic_sums`] of interval `i` of a
+/// polynomial with the same normalised harmonics and degree `n`; only `c0`
+/// may differ): the same values, to the bit, without their `O(n^2)` cost.
+pub(super) fn candidates_with(
+    p: &TrigPoly,
+    n: usize,
+    eta: f64,
+    models: &[Coeffs],
+) -> (Vec<f64>, Vec<f64>) {
+    Finder::new(p, n, eta).run(Some(models))
+}
+
+/// The sums over the harmonics of every top-level model of `p` (degree
+/// `n`, normalised), without `c0`: what [`candidates_with`] shares between
+/// polynomials that differ only in `c0`.
+pub(super) fn harmonic_models(p: &TrigPoly, n: usize) -> Vec<Coeffs> {
+    let finder = Finder::new(p, n, 0.0);
+    let h = TAU / finder.count as f64;
+    (0..finder.count)
+        .map(|i| finder.harmonic_sums((i as f64 + 0.5) * h))
+        .collect()
 }
 
 /// What a Taylor model certifies on a piece.
@@ -152,7 +176,7 @@ impl<'a> Finder<'a> {
         }
     }
 
-    fn run(&self) -> (Vec<f64>, Vec<f64>) {
+    fn run(&self, models: Option<&[Coeffs]>) -> (Vec<f64>, Vec<f64>) {
         let mut out = Vec::new();
         let mut unresolved = Vec::new();
         let mut bounds = Vec::with_capacity(self.count);
@@ -161,7 +185,11 @@ impl<'a> Finder<'a> {
         let h = TAU / self.count as f64;
         for i in 0..self.count {
             let m = (i as f64 + 0.5) * h;
-            let g = self.taylor(m);
+            let mut g = match models {
+                Some(models) => models[i],
+                None => self.harmonic_sums(m),
+            };
+            g[0] += self.p.c0;
             bounds.push((g.iter().map(|x| x.abs()).sum::<f64>() + self.delta[0]) * inflate);
             let mut stack = vec![(0.0, 1.0)];
             while let Some((c, rho)) = stack.pop() {
@@ -185,8 +213,9 @@ impl<'a> Finder<'a> {
     }
 
     /// `g_j = r^j p^{(j)}(m) / j!`, `j < ORDER`: the Taylor coefficients of
-    /// `s ↦ p(m + r s)`, from one `sin_cos` and the rotation recurrence.
-    fn taylor(&self, m: f64) -> Coeffs {
+    /// `s ↦ p(m + r s) - c0`, from one `sin_cos` and the rotation
+    /// recurrence (the model is this plus `c0` in `g_0`).
+    fn harmonic_sums(&self, m: f64) -> Coeffs {
         let (s1, c1) = m.sin_cos();
         let (mut ck, mut sk) = (1.0, 0.0);
         let mut even = [0.0; HALF];
@@ -211,7 +240,6 @@ impl<'a> Finder<'a> {
             g[2 * i] = sign * even[i];
             g[2 * i + 1] = -sign * odd[i];
         }
-        g[0] += self.p.c0;
         g
     }
 

@@ -123,6 +123,7 @@
 //! variants are `O(n)` with one `sin_cos` and no allocation.
 
 use std::f64::consts::TAU;
+use std::sync::OnceLock;
 
 use nalgebra::Complex;
 
@@ -379,6 +380,16 @@ impl TrigPoly {
         (roots, bounds.into_iter().map(|b| ldexp(b, -e)).collect())
     }
 
+    /// A finder of the roots of `self = level` for many levels that shares
+    /// the Taylor models' `O(n^2)` sums over the harmonics between them
+    /// ([`LevelRoots`]).
+    pub fn levels(&self) -> LevelRoots {
+        LevelRoots {
+            poly: self.clone(),
+            shared: OnceLock::new(),
+        }
+    }
+
     /// `Σ_k (|a_k| + |b_k|)`.
     fn coefficient_mass(&self) -> f64 {
         self.a.iter().zip(&self.b).map(|(a, b)| a.abs() + b.abs()).sum()
@@ -555,6 +566,55 @@ impl TrigPoly {
             Some(tc) if abs_p(tc) <= eta.max(p.abs()) => tc,
             _ => best,
         }
+    }
+}
+
+/// The roots of `p(θ) = level` for many levels of one polynomial `p`
+/// ([`TrigPoly::levels`]). A level changes only `c0`, so the models of
+/// step 1 (module docs) differ only in `g_0`: their sums over the
+/// harmonics, `O(n^2)` in all, are computed for the first level and kept.
+/// Every later level whose normalised polynomial has the same scale and
+/// degree (so the same harmonics to the bit) reuses them, and its roots and
+/// envelope are those of [`TrigPoly::roots_and_envelope`] of `p - level`,
+/// to the bit; any other level is solved on its own.
+#[derive(Debug, Clone)]
+pub struct LevelRoots {
+    poly: TrigPoly,
+    /// Scale exponent, degree and harmonic sums of the first level solved.
+    shared: OnceLock<(i32, usize, Vec<isolate::Coeffs>)>,
+}
+
+impl LevelRoots {
+    /// The polynomial whose levels are solved.
+    pub fn poly(&self) -> &TrigPoly {
+        &self.poly
+    }
+
+    /// [`TrigPoly::roots_and_envelope`] of `p - level`.
+    pub fn roots_and_envelope(&self, level: f64) -> (Vec<f64>, Vec<f64>) {
+        let mut q = self.poly.clone();
+        q.c0 -= level;
+        let Some((p, e)) = q.normalized_with_exponent() else {
+            return q.roots_and_envelope();
+        };
+        let Some(n) = p.significant_degree() else {
+            return q.roots_and_envelope();
+        };
+        let (e0, n0, models) = self
+            .shared
+            .get_or_init(|| (e, n, isolate::harmonic_models(&p, n)));
+        if (*e0, *n0) != (e, n) {
+            return q.roots_and_envelope();
+        }
+        let eta = p.eval_error_bound();
+        let (found, bounds) = isolate::candidates_with(&p, n, eta, models);
+        let roots = p.merge(found.into_iter().map(wrap).collect(), eta);
+        (roots, bounds.into_iter().map(|b| ldexp(b, -e)).collect())
+    }
+
+    /// The roots of `p = level` ([`TrigPoly::roots_at_level`]).
+    pub fn roots(&self, level: f64) -> Vec<f64> {
+        self.roots_and_envelope(level).0
     }
 }
 
