@@ -23,7 +23,8 @@ use crate::motor::Motor;
 use crate::numerics::bracket;
 use crate::numerics::trig_roots::{LevelRoots, TrigPoly};
 use std::f64::consts::PI;
-use std::sync::OnceLock;
+use super::piecewise::{MIN_HARMONICS, Piecewise};
+use std::sync::{Arc, OnceLock};
 
 /// A finite harmonic series with period `T`.
 #[derive(Debug, Clone)]
@@ -49,6 +50,9 @@ pub struct FourierSignal {
     velocity_range: OnceLock<(f64, f64)>,
     /// The extrema of `x_R` (from the roots of `v_R`), found once.
     extrema: OnceLock<Extrema>,
+    /// Taylor polynomials on slices of the period, used for every
+    /// evaluation when present ([`FourierSignal::with_fast_evaluation`]).
+    fast: Option<Arc<Piecewise>>,
 }
 
 impl PartialEq for FourierSignal {
@@ -141,7 +145,27 @@ impl FourierSignal {
             acceleration_levels: OnceLock::new(),
             velocity_range: OnceLock::new(),
             extrema: OnceLock::new(),
+            fast: None,
         }
+    }
+
+    /// The same series, evaluated from here on through Taylor polynomials
+    /// on slices of the period (module `piecewise`, docs/model.md section
+    /// 8.4) if it has at least `piecewise::MIN_HARMONICS` harmonics: the
+    /// values differ from the recurrence's by rounding only, and cost
+    /// `O(1)` instead of `O(n)`. Call it on a finished signal, before any
+    /// of its kept quantities (roots of `a_R`, velocity range, extrema) is
+    /// found, so that they come from the same evaluation.
+    pub(crate) fn with_fast_evaluation(mut self) -> Self {
+        if self.cos.len() >= MIN_HARMONICS {
+            self.fast = Some(Arc::new(Piecewise::new(
+                self.omega, self.c0, &self.cos, &self.sin,
+            )));
+            self.acceleration_zeros = OnceLock::new();
+            self.velocity_range = OnceLock::new();
+            self.extrema = OnceLock::new();
+        }
+        self
     }
 
     /// Phases in `[0, T)` where `a_R = level`, sorted: the roots of a
@@ -293,11 +317,16 @@ impl FourierSignal {
             .enumerate()
             .map(|(i, (a, b))| ((i + 1) as f64).sqrt() * a.hypot(*b))
             .sum();
-        64.0 * f64::EPSILON * sum + 2.0 * f64::EPSILON * self.period * self.acceleration_bound()
+        let direct =
+            64.0 * f64::EPSILON * sum + 2.0 * f64::EPSILON * self.period * self.acceleration_bound();
+        direct + self.fast.as_ref().map_or(0.0, |f| f.velocity_rounding())
     }
 
     /// Position at phase `tau` (m).
     pub fn position(&self, tau: f64) -> f64 {
+        if let Some(f) = &self.fast {
+            return f.position(tau);
+        }
         let mut x = self.c0;
         for_each_harmonic(self.omega * tau, self.cos.len(), |k, c, s| {
             x += self.cos[k] * c + self.sin[k] * s;
@@ -308,6 +337,9 @@ impl FourierSignal {
     /// Velocity at phase `tau` (m/s).
     #[inline]
     pub fn velocity(&self, tau: f64) -> f64 {
+        if let Some(f) = &self.fast {
+            return f.velocity(tau);
+        }
         let mut v = 0.0;
         for_each_harmonic(self.omega * tau, self.vel.len(), |k, c, s| {
             let (wa, wb) = self.vel[k];
@@ -319,6 +351,9 @@ impl FourierSignal {
     /// Acceleration at phase `tau` (m/s^2).
     #[inline]
     pub fn acceleration(&self, tau: f64) -> f64 {
+        if let Some(f) = &self.fast {
+            return f.acceleration(tau);
+        }
         let mut a = 0.0;
         for_each_harmonic(self.omega * tau, self.acc.len(), |k, c, s| {
             let (wa, wb) = self.acc[k];
@@ -330,6 +365,9 @@ impl FourierSignal {
     /// Velocity and acceleration at phase `tau` in one pass.
     #[inline]
     pub fn velocity_acceleration(&self, tau: f64) -> (f64, f64) {
+        if let Some(f) = &self.fast {
+            return f.velocity_acceleration(tau);
+        }
         let mut v = 0.0;
         let mut a = 0.0;
         for_each_harmonic(self.omega * tau, self.vel.len(), |k, c, s| {
@@ -343,6 +381,9 @@ impl FourierSignal {
 
     /// Jerk at phase `tau` (m/s^3).
     pub fn jerk(&self, tau: f64) -> f64 {
+        if let Some(f) = &self.fast {
+            return f.jerk(tau);
+        }
         let mut j = 0.0;
         for_each_harmonic(self.omega * tau, self.acc.len(), |k, c, s| {
             let (aa, ab) = self.acc[k];
@@ -355,6 +396,10 @@ impl FourierSignal {
     /// Position, velocity and acceleration at phase `tau`, in one pass.
     #[inline]
     pub fn state(&self, tau: f64) -> RodState {
+        if let Some(f) = &self.fast {
+            let (x, v, a) = f.state(tau);
+            return RodState { x, v, a };
+        }
         let mut st = RodState {
             x: self.c0,
             v: 0.0,
@@ -517,12 +562,17 @@ impl FourierSignal {
 
     /// The mirrored signal `x_R -> -x_R`.
     pub fn mirrored(&self) -> Self {
-        Self::from_coefficients(
+        let mirror = Self::from_coefficients(
             self.period,
             -self.c0,
             self.cos.iter().map(|a| -a).collect(),
             self.sin.iter().map(|b| -b).collect(),
-        )
+        );
+        if self.fast.is_some() {
+            mirror.with_fast_evaluation()
+        } else {
+            mirror
+        }
     }
 
     /// The same signal delayed by `delay` seconds: `x_R(t - delay)`.

@@ -22,6 +22,7 @@ pub(crate) mod description;
 pub(crate) mod fourier;
 pub(crate) mod harmonics;
 pub(crate) mod ideal;
+pub(crate) mod piecewise;
 
 use crate::error::{Num, ParamError};
 use crate::motor::Motor;
@@ -370,6 +371,10 @@ impl Signal {
                 *scale_to_stroke,
                 *shift_to_minimum,
             )?),
+        };
+        let signal = match signal {
+            Signal::Fourier(s) => Signal::Fourier(s.with_fast_evaluation()),
+            ideal => ideal,
         };
         // Position, velocity and acceleration must be representable.
         let scale = signal.velocity_scale() * signal.period();
