@@ -151,7 +151,7 @@ impl FourierSignal {
 
     /// The same series, evaluated from here on through Taylor polynomials
     /// on slices of the period (module `piecewise`, docs/model.md section
-    /// 8.4) if it has at least `piecewise::MIN_HARMONICS` harmonics: the
+    /// 8) if it has at least `piecewise::MIN_HARMONICS` harmonics: the
     /// values differ from the recurrence's by rounding only, and cost
     /// `O(1)` instead of `O(n)`. Call it on a finished signal, before any
     /// of its kept quantities (roots of `a_R`, velocity range, extrema) is

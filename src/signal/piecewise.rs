@@ -1,5 +1,6 @@
 //! Fast evaluation of a harmonic series of many harmonics: Taylor
-//! polynomials on slices of the period (docs/model.md section 8.4).
+//! polynomials on slices of the period (docs/model.md section 8,
+//! "Evaluating a series of many harmonics").
 //!
 //! A series `x_R(t) = c_0 + Σ_{k=1}^{n} (A_k cos kθ + B_k sin kθ)`,
 //! `θ = w_0 t`, costs `O(n)` per evaluation (one `sin_cos`, then `n` steps
