@@ -785,3 +785,42 @@ fn ten_thousand_random_polynomials_lose_no_root() {
     }
     assert!(compared >= total / 5);
 }
+
+/// `LevelRoots` shares the models' sums between levels: its roots must be
+/// those of `roots_at_level`, to the bit (the sums are the same numbers, and
+/// a level whose scale or degree differs is solved on its own), and its
+/// envelope must bound `|p - level|` on every slice (checked against the
+/// direct sum, with its rounding level, at 500 points per level).
+#[test]
+fn shared_levels_give_the_same_roots_and_a_true_envelope() {
+    use rand::rngs::StdRng;
+    use rand::{RngExt, SeedableRng};
+    let mut rng = StdRng::seed_from_u64(0x1e7e_15);
+    for case in 0..200 {
+        let n = [3, 8, 17, 40, 64, 128][case % 6];
+        let a: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..1.0)).collect();
+        let b: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..1.0)).collect();
+        let p = TrigPoly::new(rng.random_range(-0.5..0.5), a, b);
+        let levels = p.levels();
+        let mass = coeff_sum(&p);
+        // levels inside the range, near its edges, and far outside (other scale)
+        let spread = [0.0, 0.3, -0.7, 0.95, -1.0, 3.0, -40.0, 1e3];
+        for s in spread {
+            let level = s * mass * rng.random_range(0.5..1.0);
+            let shared = levels.roots_and_envelope(level);
+            assert_eq!(shared.0, p.roots_at_level(level), "n = {n}, level {level}");
+            let count = shared.1.len();
+            let eta = 4.0 * p.eval_error_bound() + 4.0 * f64::EPSILON * level.abs();
+            for i in 0..500 {
+                let theta = TAU * (i as f64 + 0.5) / 500.0;
+                let slice = ((theta / TAU * count as f64) as usize).min(count - 1);
+                let value = (direct_eval(&p, theta) - level).abs();
+                assert!(
+                    value <= shared.1[slice] + eta,
+                    "n = {n}: |p - {level}| = {value} above its envelope {}",
+                    shared.1[slice]
+                );
+            }
+        }
+    }
+}

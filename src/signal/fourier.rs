@@ -18,12 +18,12 @@
 
 use super::IdealShape;
 use super::RodState;
+use super::piecewise::{MIN_HARMONICS, Piecewise};
 use crate::error::{Num, ParamError};
 use crate::motor::Motor;
 use crate::numerics::bracket;
 use crate::numerics::trig_roots::{LevelRoots, TrigPoly};
 use std::f64::consts::PI;
-use super::piecewise::{MIN_HARMONICS, Piecewise};
 use std::sync::{Arc, OnceLock};
 
 /// A finite harmonic series with period `T`.
@@ -205,7 +205,11 @@ impl FourierSignal {
     /// [`FourierSignal::acceleration_bound`]. Found with the roots of `a_R`.
     pub(crate) fn acceleration_slices(&self) -> Vec<f64> {
         let cap = self.acceleration_bound();
-        self.acceleration_zeros().1.iter().map(|b| b.min(cap)).collect()
+        self.acceleration_zeros()
+            .1
+            .iter()
+            .map(|b| b.min(cap))
+            .collect()
     }
 
     /// Smallest and largest rod velocity over a period, exact: the values at
@@ -317,8 +321,8 @@ impl FourierSignal {
             .enumerate()
             .map(|(i, (a, b))| ((i + 1) as f64).sqrt() * a.hypot(*b))
             .sum();
-        let direct =
-            64.0 * f64::EPSILON * sum + 2.0 * f64::EPSILON * self.period * self.acceleration_bound();
+        let direct = 64.0 * f64::EPSILON * sum
+            + 2.0 * f64::EPSILON * self.period * self.acceleration_bound();
         direct + self.fast.as_ref().map_or(0.0, |f| f.velocity_rounding())
     }
 

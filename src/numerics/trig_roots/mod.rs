@@ -392,7 +392,11 @@ impl TrigPoly {
 
     /// `Σ_k (|a_k| + |b_k|)`.
     fn coefficient_mass(&self) -> f64 {
-        self.a.iter().zip(&self.b).map(|(a, b)| a.abs() + b.abs()).sum()
+        self.a
+            .iter()
+            .zip(&self.b)
+            .map(|(a, b)| a.abs() + b.abs())
+            .sum()
     }
 
     /// The previous root finder, kept as an independent test oracle for
