@@ -4,8 +4,13 @@
 //! `v_inf`-only default scene, which skips the start-up; and the raw event
 //! rate.
 //!
-//! `cargo run --release --example throughput`
+//! The last table times whole processes, `stickslip run SCENE` with every
+//! indicator from start to exit, and needs the binary: build it first.
+//!
+//! `cargo build --release && cargo run --release --example throughput`
 
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
 use std::time::Instant;
 use stickslip::Indicator;
 use stickslip::PeriodEngine;
@@ -109,6 +114,7 @@ fn main() {
         median(walls),
         median(internal)
     );
+    whole_processes();
     let motor = Motor::default();
     println!("event rate over 100000 periods (median of 5 runs):");
     for (n, kappa, sigma) in [
@@ -132,4 +138,51 @@ fn main() {
             count as f64 / 100_000.0
         );
     }
+}
+
+/// Medians of 21 whole processes `stickslip run SCENE` (every indicator,
+/// output to a null device) for the paper's scene with `n` harmonics.
+fn whole_processes() {
+    let Some(bin) = std::env::current_exe()
+        .ok()
+        .and_then(|e| Some(e.parent()?.parent()?.join("stickslip")))
+        .filter(|b| b.exists())
+    else {
+        println!(
+            "whole processes: no stickslip binary beside the examples (cargo build --release)"
+        );
+        return;
+    };
+    let dir: PathBuf =
+        std::env::temp_dir().join(format!("stickslip_throughput_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temporary folder");
+    let base = include_str!("scenes/paper_default.toml");
+    println!("whole process `stickslip run SCENE`, every indicator, medians of 21:");
+    for (n, sigma) in [
+        (2, true),
+        (64, true),
+        (64, false),
+        (256, true),
+        (256, false),
+    ] {
+        let text = base
+            .replace("harmonics = 2 ", &format!("harmonics = {n} "))
+            .replace("sigma = true ", &format!("sigma = {sigma} "));
+        let file = dir.join(format!("n{n}_{sigma}.toml"));
+        std::fs::write(&file, text).expect("scene written");
+        let mut times = Vec::new();
+        for _ in 0..21 {
+            let clock = Instant::now();
+            let status = Command::new(&bin)
+                .arg("run")
+                .arg(&file)
+                .stdout(Stdio::null())
+                .status()
+                .expect("binary runs");
+            times.push(clock.elapsed().as_secs_f64() * 1e3);
+            assert!(status.success(), "{} failed", file.display());
+        }
+        println!("  n = {n:3}, sigma = {sigma:5}: {:7.2} ms", median(times));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }
