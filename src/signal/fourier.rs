@@ -542,12 +542,22 @@ impl FourierSignal {
             });
         }
         let f = stroke / actual;
-        Ok(Self::from_coefficients(
+        let scaled = Self::from_coefficients(
             self.period,
             self.c0 * f,
             self.cos.iter().map(|a| a * f).collect(),
             self.sin.iter().map(|b| b * f).collect(),
-        ))
+        );
+        // Scaling moves no root of v_R: the extrema are where they were,
+        // their values scaled (one representation for both signals).
+        let e = self.extrema();
+        let _ = scaled.extrema.set(Extrema {
+            tau_min: e.tau_min,
+            min: e.min * f,
+            tau_max: e.tau_max,
+            max: e.max * f,
+        });
+        Ok(scaled)
     }
 
     /// The signal shifted in time and offset so that its minimum lies at
