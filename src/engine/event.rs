@@ -74,8 +74,9 @@ use super::{
 use super::{Observer, PeriodEnd};
 use crate::error::SimulationError;
 use crate::motor::Motor;
-use crate::signal::{RodState, Signal};
+use crate::signal::{Partition, RodState, Signal};
 use detect::{Found, SlipPieces, band_pieces};
+use rayon::prelude::*;
 
 pub(crate) use super::contact::Band;
 
@@ -141,33 +142,45 @@ pub struct EventEngine<'s> {
     last_uncertainty: f64,
 }
 
+/// Fewest harmonics for which [`partitions`] finds its levels on several
+/// threads (below, a level takes well under 0.1 ms).
+const PARALLEL_DEGREE: usize = 32;
+
+/// The partitions of the period at `levels` (docs/model.md section 8),
+/// each distinct level found once. A series of [`PARALLEL_DEGREE`] or more
+/// harmonics finds them on the threads of the `rayon` pool: each partition
+/// is a function of its level alone (they share the Taylor models of `a_R`,
+/// found once with its roots), so the result is the same to the bit.
+fn partitions(signal: &Signal, levels: [f64; 4]) -> [Partition; 4] {
+    let mut distinct: Vec<f64> = Vec::with_capacity(4);
+    for level in levels {
+        if !distinct.contains(&level) {
+            distinct.push(level);
+        }
+    }
+    let many = match signal {
+        Signal::Fourier(s) => s.degree() >= PARALLEL_DEGREE,
+        Signal::Ideal(_) => false,
+    };
+    let found: Vec<Partition> = if many && distinct.len() > 1 {
+        distinct.par_iter().map(|&c| signal.partition(c)).collect()
+    } else {
+        distinct.iter().map(|&c| signal.partition(c)).collect()
+    };
+    levels.map(|level| {
+        let i = distinct.iter().position(|d| *d == level).unwrap_or(0);
+        found[i].clone()
+    })
+}
+
 impl<'s> EventEngine<'s> {
     /// Prepares the engine: finds the partitions of the period once.
     pub fn new(signal: &'s Signal, motor: &Motor, options: EventOptions) -> Self {
         let period = signal.period();
         let a_fwd = motor.slip_forward_acceleration();
         let a_bwd = motor.slip_backward_acceleration();
-        let plus = signal.partition(motor.a_0_plus());
-        let minus = if motor.a_0_minus() == motor.a_0_plus() {
-            plus.clone()
-        } else {
-            signal.partition(motor.a_0_minus())
-        };
-        let reuse = |level: f64| {
-            if level == plus.level {
-                Some(plus.clone())
-            } else if level == minus.level {
-                Some(minus.clone())
-            } else {
-                None
-            }
-        };
-        let fwd = reuse(a_fwd).unwrap_or_else(|| signal.partition(a_fwd));
-        let bwd = if a_bwd == a_fwd {
-            fwd.clone()
-        } else {
-            reuse(a_bwd).unwrap_or_else(|| signal.partition(a_bwd))
-        };
+        let [plus, minus, fwd, bwd] =
+            partitions(signal, [motor.a_0_plus(), motor.a_0_minus(), a_fwd, a_bwd]);
         let jump = signal.jump_phase();
         let band = band_pieces(&plus, &minus, jump);
         let v_scale = signal.velocity_scale().max(f64::MIN_POSITIVE);
