@@ -44,7 +44,7 @@ pub struct FourierSignal {
     /// `|a_R|` on slices of the period, found once on demand.
     acceleration_zeros: OnceLock<(Vec<f64>, Vec<f64>)>,
     /// The root finder of `a_R = c` shared by every threshold `c`.
-    acceleration_levels: OnceLock<LevelRoots>,
+    acceleration_levels: OnceLock<Box<LevelRoots>>,
     /// `min v_R` and `max v_R`, from the roots of `a_R`, found once: every
     /// rounding bound and the engine's tolerances scale with them.
     velocity_range: OnceLock<(f64, f64)>,
@@ -186,7 +186,7 @@ impl FourierSignal {
     /// The root finder of `a_R = level` for every level, built once.
     fn acceleration_levels(&self) -> &LevelRoots {
         self.acceleration_levels
-            .get_or_init(|| self.acceleration_poly().levels())
+            .get_or_init(|| Box::new(self.acceleration_poly().levels()))
     }
 
     /// The roots of `a_R` (phases) and the envelope of `|a_R|` on `N` equal

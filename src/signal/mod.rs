@@ -320,6 +320,10 @@ pub struct RodState {
 }
 
 /// A periodic rod signal.
+// A signal is built once per scene and passed by reference; the series
+// variant carries its cached roots and slices, so boxing it would only add
+// an indirection to every evaluation.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
 pub enum Signal {
     /// The ideal signal (11).

@@ -121,14 +121,14 @@ impl Piecewise {
                     jerk: [0.0; ORDER - 3],
                 };
                 slice.x[0] += c0;
-                for j in 1..ORDER {
+                for (j, &gj) in g.iter().enumerate().skip(1) {
                     let fj = j as f64;
-                    slice.v[j - 1] = fj * d * g[j];
+                    slice.v[j - 1] = fj * d * gj;
                     if j >= 2 {
-                        slice.a[j - 2] = fj * (fj - 1.0) * d * d * g[j];
+                        slice.a[j - 2] = fj * (fj - 1.0) * d * d * gj;
                     }
                     if j >= 3 {
-                        slice.jerk[j - 3] = fj * (fj - 1.0) * (fj - 2.0) * d * d * d * g[j];
+                        slice.jerk[j - 3] = fj * (fj - 1.0) * (fj - 2.0) * d * d * d * gj;
                     }
                 }
                 let mass: f64 = slice.v.iter().map(|c| c.abs()).sum();
