@@ -6,10 +6,12 @@
 //! * `bracket`: one root in a sign-changing bracket, safeguarded Newton.
 //! * `compensated`: Neumaier's compensated sum.
 //! * `line_fit`: least-squares lines and log-log slopes.
+//! * `taylor`: Taylor coefficients of a harmonic series about a point.
 
 pub(crate) mod bracket;
 mod compensated;
 pub(crate) mod line_fit;
+pub(crate) mod taylor;
 pub(crate) mod trig_roots;
 
 pub use compensated::CompensatedSum;

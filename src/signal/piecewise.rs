@@ -35,6 +35,7 @@
 //! [`Piecewise::velocity_rounding`] adds to the signal's rounding bound).
 //! `tests/piecewise.rs` compares the two on random series up to `n = 256`.
 
+use crate::numerics::taylor;
 use std::f64::consts::{PI, TAU};
 
 /// Fewest harmonics for which a signal evaluates through slices.
@@ -76,44 +77,14 @@ impl Piecewise {
         let n = cos.len();
         let count = ((PI * n as f64 / NR).ceil() as usize).max(3);
         let r = PI / count as f64;
-        // (k r)^j / j! for every harmonic
-        let powers: Vec<[f64; ORDER]> = (1..=n)
-            .map(|k| {
-                let x = k as f64 * r;
-                let mut t = [0.0; ORDER];
-                t[0] = 1.0;
-                for j in 1..ORDER {
-                    t[j] = t[j - 1] * x / j as f64;
-                }
-                t
-            })
-            .collect();
+        let powers = taylor::powers::<ORDER>(n, r);
         let d = omega / r;
         let h = TAU / count as f64;
         let mut v_rounding: f64 = 0.0;
         let slices: Vec<Slice> = (0..count)
             .map(|i| {
                 let m = (i as f64 + 0.5) * h;
-                let (s1, c1) = m.sin_cos();
-                let (mut ck, mut sk) = (1.0, 0.0);
-                let mut g = [0.0; ORDER];
-                for ((&ak, &bk), t) in cos.iter().zip(sin).zip(&powers) {
-                    let c = ck * c1 - sk * s1;
-                    sk = sk * c1 + ck * s1;
-                    ck = c;
-                    // W_k = (a_k - i b_k) e^{ikm} = u + i v; Re(i^j W) = u, -v, -u, v
-                    let u = ak * ck + bk * sk;
-                    let w = ak * sk - bk * ck;
-                    for j in 0..ORDER {
-                        let term = match j % 4 {
-                            0 => u,
-                            1 => -w,
-                            2 => -u,
-                            _ => w,
-                        };
-                        g[j] += t[j] * term;
-                    }
-                }
+                let g = taylor::harmonic_sums(cos, sin, &powers, m);
                 let mut slice = Slice {
                     x: g,
                     v: [0.0; ORDER - 1],

@@ -7,11 +7,10 @@
 use std::f64::consts::{PI, TAU};
 
 use super::{EPS, NEWTON_ITERS, TrigPoly};
+use crate::numerics::taylor;
 
 /// Terms of a Taylor model: orders `j < ORDER`.
 const ORDER: usize = 24;
-/// Even and odd orders are accumulated separately (vectorisable loops).
-const HALF: usize = ORDER / 2;
 /// Bound on `n r`, degree times the half-width of a top-level interval: the
 /// remainder `(n r)^ORDER / ORDER!` is then below `3e-17`.
 const NR: f64 = 2.0;
@@ -102,10 +101,8 @@ struct Finder<'a> {
     r: f64,
     /// Number of top-level intervals.
     count: usize,
-    /// `(k r)^j / j!` for even `j` (row `k - 1`).
-    pow_even: Vec<[f64; HALF]>,
-    /// `(k r)^j / j!` for odd `j`.
-    pow_odd: Vec<[f64; HALF]>,
+    /// `(k r)^j / j!` (row `k - 1`).
+    powers: Vec<Coeffs>,
     /// `δ_0, δ_1, δ_2`: model error bounds of `p`, `d/ds p`, `d²/ds² p`.
     delta: [f64; 3],
     /// Rounding level of [`TrigPoly::eval`] (`η`).
@@ -118,18 +115,12 @@ impl<'a> Finder<'a> {
     fn new(p: &'a TrigPoly, n: usize, eta: f64) -> Self {
         let count = ((PI * n as f64 / NR).ceil() as usize).max(3);
         let r = 0.5 * TAU / count as f64 * (1.0 + OVERLAP);
-        let mut pow_even = Vec::with_capacity(n);
-        let mut pow_odd = Vec::with_capacity(n);
+        let powers = taylor::powers::<ORDER>(n, r);
         let mut delta = [0.0; 3];
         let mut eta1 = 0.0;
         let mut value_sum = p.c0.abs();
-        for k in 1..=n {
+        for (k, t) in (1..=n).zip(&powers) {
             let x = k as f64 * r;
-            let mut t = [0.0; ORDER];
-            t[0] = 1.0;
-            for j in 1..ORDER {
-                t[j] = t[j - 1] * x / j as f64;
-            }
             let mass = p.a[k - 1].abs() + p.b[k - 1].abs();
             // Lagrange remainders of orders ORDER, ORDER-1, ORDER-2 of the
             // k-th term and its s-derivatives: mass · x^ORDER / (ORDER-i)!
@@ -149,8 +140,6 @@ impl<'a> Finder<'a> {
             delta[2] += tail * kk * (kk - 1.0) + round * s2;
             value_sum += mass * s0;
             eta1 += (k as f64).powf(1.5) * mass;
-            pow_even.push(std::array::from_fn(|i| t[2 * i]));
-            pow_odd.push(std::array::from_fn(|i| t[2 * i + 1]));
         }
         // the terms above degree n, left out of the models
         for k in n + 1..=p.a.len() {
@@ -168,8 +157,7 @@ impl<'a> Finder<'a> {
             n,
             r,
             count,
-            pow_even,
-            pow_odd,
+            powers,
             delta: delta.map(|d| SAFETY * d),
             eta,
             eta1: 16.0 * EPS * eta1,
@@ -216,31 +204,7 @@ impl<'a> Finder<'a> {
     /// `s ↦ p(m + r s) - c0`, from one `sin_cos` and the rotation
     /// recurrence (the model is this plus `c0` in `g_0`).
     fn harmonic_sums(&self, m: f64) -> Coeffs {
-        let (s1, c1) = m.sin_cos();
-        let (mut ck, mut sk) = (1.0, 0.0);
-        let mut even = [0.0; HALF];
-        let mut odd = [0.0; HALF];
-        let terms = self.p.a[..self.n].iter().zip(&self.p.b[..self.n]);
-        for (((&ak, &bk), pe), po) in terms.zip(&self.pow_even).zip(&self.pow_odd) {
-            let c = ck * c1 - sk * s1;
-            sk = sk * c1 + ck * s1;
-            ck = c;
-            // W_k = (a_k - i b_k) e^{ikm} = u + i v
-            let u = ak * ck + bk * sk;
-            let v = ak * sk - bk * ck;
-            for i in 0..HALF {
-                even[i] += pe[i] * u;
-                odd[i] += po[i] * v;
-            }
-        }
-        // Re(i^j W): u, -v, -u, v for j = 0, 1, 2, 3 (mod 4)
-        let mut g = [0.0; ORDER];
-        for i in 0..HALF {
-            let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
-            g[2 * i] = sign * even[i];
-            g[2 * i + 1] = -sign * odd[i];
-        }
-        g
+        taylor::harmonic_sums(&self.p.a[..self.n], &self.p.b[..self.n], &self.powers, m)
     }
 
     /// The model of the piece `s ∈ [c - ρ, c + ρ]` of the top-level interval
