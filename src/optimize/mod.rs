@@ -13,11 +13,13 @@
 //! * `params`: the parametrisation ([`Shape`], [`Series`]);
 //! * `problem`: stroke, frequency, limits, one evaluation, the merit;
 //! * `objective`: the objectives and the values they are made of;
-//! * [`gradient`]: sensitivities to the signal's parameters (central
-//!   differences for now; the one place derivatives come from);
+//! * [`gradient`]: sensitivities to the signal's parameters (exact for
+//!   `v_inf`, `S` and `U`, central differences for smoothness, durability
+//!   and the start-up; the one place derivatives come from);
 //! * `global`: the seeded Latin hypercube and the choice of starts;
 //! * `local`: BFGS with a weak Wolfe line search (nonsmooth optima);
 //! * `search`: the two stages together, the best feasible result;
+//! * `distinct`: which refinement ends are the same local optimum;
 //! * `pareto`: a front of two objectives;
 //! * `map`: the `v_inf` map over the plane of `n = 2`;
 //! * `output`: the written scene, the comparison, text and JSON;
@@ -42,6 +44,7 @@
 //! * The same scene, settings and seed give the same result, bit for bit,
 //!   on any number of threads.
 
+mod distinct;
 mod global;
 pub(crate) mod gradient;
 mod local;
@@ -54,7 +57,7 @@ mod problem;
 mod search;
 pub(crate) mod spec;
 
-pub use gradient::{Param, gradient};
+pub use gradient::{Param, gradient, gradient_by_differences};
 pub use objective::Objective;
 pub use params::{Series, Shape};
 pub use problem::{Limits, Measured, Problem};
