@@ -58,7 +58,7 @@ mod search;
 pub(crate) mod spec;
 
 pub use gradient::{Param, gradient, gradient_by_differences};
-pub use objective::Objective;
+pub use objective::{Objective, Values};
 pub use params::{Series, Shape};
 pub use problem::{Limits, Measured, Problem};
 pub use search::{Found, Search, SearchOptions};
