@@ -253,4 +253,63 @@ mod tests {
         assert_eq!(local_optima(&ends), 3);
         assert_eq!(local_optima(&ends[..2]), 1);
     }
+
+    /// The problem of `n` harmonics at the paper's default `f_max`.
+    fn default_problem(n: i64) -> crate::optimize::Problem {
+        use crate::optimize::{Objective, OptimizeTable, Overrides, Settings};
+        let scene = crate::scene::Scene::default();
+        let overrides = Overrides {
+            harmonics: Some(n),
+            ..Overrides::default()
+        };
+        let settings = Settings::resolve(&OptimizeTable::default(), &overrides, &scene).unwrap();
+        let mut p = settings.problem(&scene, Objective::VInf).unwrap();
+        p.scale = 0.297137;
+        p.v_ref = 0.297137;
+        p
+    }
+
+    /// Real refinements: two from different starts in the plane of `n = 2`
+    /// (ratio 0.15 and 0.4, phases 2.8 and 3.5 rad) end at the one optimum
+    /// (model 15: `d_2 / d_1 = 0.25`, `psi = 3.15`) and count once, though
+    /// their raw coordinates differ; two of `n = 3` started near the two
+    /// optima the search finds at the default `f_max` (one mostly
+    /// harmonic 1, one mostly harmonic 2) count twice.
+    #[test]
+    fn refinements_to_one_optimum_count_once_and_to_two_twice() {
+        use crate::optimize::local::LocalOptions;
+        use crate::optimize::search::refine;
+        let options = LocalOptions::default();
+        let p = default_problem(2);
+        let starts = [
+            Shape::from_ratio_and_phase(0.15, 2.8),
+            Shape::from_ratio_and_phase(0.4, 3.5),
+        ];
+        let ends: Vec<Refinement> = starts
+            .iter()
+            .enumerate()
+            .map(|(i, s)| refine(&p, s, i, &options).0)
+            .collect();
+        for r in &ends {
+            let (ratio, phase) = r.to.ratio_and_phase();
+            assert!(
+                (ratio - 0.25).abs() < 1e-3 && (phase - 3.15).abs() < 1e-2,
+                "{ratio} {phase}: {r:?}"
+            );
+        }
+        assert_ne!(ends[0].to, ends[1].to);
+        assert_eq!(local_optima(&ends), 1);
+        let p = default_problem(3);
+        let starts = [
+            shape(&[0.30, 0.84, 0.45], &[0.0, 0.05, PI + 0.05]),
+            shape(&[0.96, 0.28, 0.06], &[0.0, PI + 0.05, 0.05]),
+        ];
+        let ends: Vec<Refinement> = starts
+            .iter()
+            .enumerate()
+            .map(|(i, s)| refine(&p, s, i, &options).0)
+            .collect();
+        assert!(signal_distance(&ends[0].to, &ends[1].to) > 0.1);
+        assert_eq!(local_optima(&ends), 2, "{ends:?}");
+    }
 }
