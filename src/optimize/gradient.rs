@@ -91,9 +91,11 @@ pub(crate) const STEP: f64 = 1e-5;
 /// Derivatives and what they cost.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Counted {
-    /// One [`Values`] of derivatives per parameter.
-    pub values: Vec<Values>,
-    /// Simulator runs made for them (the central differences).
+    /// One [`Values`] of derivatives per parameter, or why a central
+    /// difference could not be taken.
+    pub values: Result<Vec<Values>, String>,
+    /// Simulator runs made for them (the central differences, up to a
+    /// failure included).
     pub runs: u64,
 }
 
@@ -153,7 +155,7 @@ pub fn gradient_by_differences(
 /// steady state, or a needed difference cannot be taken.
 pub fn gradient(problem: &Problem, series: &Series, wrt: &[Param]) -> Result<Vec<Values>, String> {
     let at = problem.measure(problem.spec(series))?;
-    Ok(gradient_at(problem, series, &at, wrt)?.values)
+    gradient_at(problem, series, &at, wrt).values
 }
 
 /// [`gradient`] at a series whose run reported `at`, with the runs it made.
@@ -162,7 +164,7 @@ pub(crate) fn gradient_at(
     series: &Series,
     at: &Measured,
     wrt: &[Param],
-) -> Result<Counted, String> {
+) -> Counted {
     let spec = problem.spec(series);
     let fields: Vec<Parameter> = wrt.iter().map(|p| p.field()).collect();
     let v_inf = match problem.base.run.engine {
@@ -186,7 +188,15 @@ pub(crate) fn gradient_at(
     for ((&param, dv), power) in wrt.iter().zip(&v_inf).zip(&power) {
         let mut d = if differenced || !dv.is_finite() {
             runs += 2;
-            central(problem, series, param)?
+            match central(problem, series, param) {
+                Ok(d) => d,
+                Err(e) => {
+                    return Counted {
+                        values: Err(e),
+                        runs,
+                    };
+                }
+            }
         } else {
             Values::default()
         };
@@ -199,7 +209,10 @@ pub(crate) fn gradient_at(
         }
         values.push(d);
     }
-    Ok(Counted { values, runs })
+    Counted {
+        values: Ok(values),
+        runs,
+    }
 }
 
 /// `(dU, dS)` per parameter (module docs), where the runs compute the
@@ -275,11 +288,20 @@ pub(crate) fn coordinate_gradient(
     problem: &Problem,
     shape: &Shape,
     at: &Measured,
-) -> Result<Counted, String> {
+) -> Counted {
     let n = shape.harmonics();
     let series = shape.series(problem.stroke);
-    let raw = gradient_at(problem, &series, at, &shape_parameters(n))?;
-    let (amplitude, phase) = raw.values.split_at(n);
+    let raw = gradient_at(problem, &series, at, &shape_parameters(n));
+    let values = match raw.values {
+        Ok(v) => v,
+        Err(e) => {
+            return Counted {
+                values: Err(e),
+                runs: raw.runs,
+            };
+        }
+    };
+    let (amplitude, phase) = values.split_at(n);
     let u = shape.unit_amplitudes();
     let jac = shape.unit_jacobian();
     let half = 0.5 * problem.stroke;
@@ -293,8 +315,8 @@ pub(crate) fn coordinate_gradient(
         out.push(d);
     }
     out.extend_from_slice(phase);
-    Ok(Counted {
-        values: out,
+    Counted {
+        values: Ok(out),
         runs: raw.runs,
-    })
+    }
 }

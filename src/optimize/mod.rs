@@ -37,10 +37,10 @@
 //!   them (when they satisfy the limits).
 //! * It is a local optimum at best: the global stage is a finite sample,
 //!   the local stage stops where it cannot improve, and the count of local
-//!   optima is of those found. `v_inf` has kinks where the event
-//!   structure of the steady orbit changes; the optima seen lie on them,
-//!   where no gradient exists and a central difference mixes the two
-//!   sides.
+//!   optima is of those found (`distinct`). `v_inf` has kinks where the
+//!   event structure of the steady orbit changes; the optima seen lie on
+//!   them, where no gradient exists: the search takes the derivative of
+//!   the side of the point's own orbit there ([`gradient`]).
 //! * The same scene, settings and seed give the same result, bit for bit,
 //!   on any number of threads.
 

@@ -21,7 +21,7 @@
 //! on their rod signals and merits (`distinct`); the count is of the
 //! optima the refinements found, not a proof that there are no others.
 
-use super::gradient::{coordinate_gradient, shape_parameters};
+use super::gradient::coordinate_gradient;
 use super::local::{self, LocalOptions, Stop};
 use super::params::Shape;
 use super::problem::{Measured, Problem};
@@ -167,7 +167,6 @@ pub(super) fn refine(
     index: usize,
     options: &LocalOptions,
 ) -> (Refinement, Vec<HistoryPoint>) {
-    let n = problem.harmonics;
     let constrained = problem.objective != super::Objective::VInf
         || problem.bound.is_some()
         || !problem.limits.is_empty();
@@ -213,16 +212,11 @@ pub(super) fn refine(
             let grads = coordinate_gradient(problem, &shape, &m);
             let mut s = state.borrow_mut();
             s.gradients += 1;
-            // A failed difference made its runs up to the failure; count
-            // all it could have made.
-            s.evaluations += grads
-                .as_ref()
-                .map_or(2 * shape_parameters(n).len() as u64, |g| g.runs);
+            s.evaluations += grads.runs;
             drop(s);
-            let grads = grads.ok()?;
+            let grads = grads.values.ok()?;
             Some(
                 grads
-                    .values
                     .iter()
                     .map(|dv| problem.merit_derivative(&m, dv, mu))
                     .collect(),
