@@ -412,8 +412,14 @@ fn a_pareto_front_is_non_dominated_reproducible_and_ends_at_the_single_optima() 
         let t_run = run["startup_time"].as_f64().unwrap();
         let e_v = run["error_estimate"]["v_inf"].as_f64().unwrap();
         let e_t = run["error_estimate"]["startup_time"].as_f64().unwrap();
-        assert!((v_run - v).abs() <= e_v, "point {k}: v_inf {v_run} against {v}");
-        assert!((t_run - t).abs() <= e_t, "point {k}: start-up {t_run} against {t}");
+        assert!(
+            (v_run - v).abs() <= e_v,
+            "point {k}: v_inf {v_run} against {v}"
+        );
+        assert!(
+            (t_run - t).abs() <= e_t,
+            "point {k}: start-up {t_run} against {t}"
+        );
         assert_eq!(p["v_inf"].as_f64().unwrap(), v);
     }
     // The single-objective optima of the same settings and seed.

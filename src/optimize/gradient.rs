@@ -284,11 +284,7 @@ pub(crate) fn shape_parameters(n: usize) -> Vec<Param> {
 /// [`gradient`] by the chain rule:
 /// `d/dt_j = sum_k sign(u_k) (x_hat / 2) (du_k/dt_j) d/dd_k` and
 /// `d/dpsi_k = d/dphi_k`; with the runs made.
-pub(crate) fn coordinate_gradient(
-    problem: &Problem,
-    shape: &Shape,
-    at: &Measured,
-) -> Counted {
+pub(crate) fn coordinate_gradient(problem: &Problem, shape: &Shape, at: &Measured) -> Counted {
     let n = shape.harmonics();
     let series = shape.series(problem.stroke);
     let raw = gradient_at(problem, &series, at, &shape_parameters(n));

@@ -94,7 +94,9 @@ pub struct Search {
     pub local_optima: usize,
     /// All simulator runs.
     pub evaluations: u64,
-    /// All gradients of the refinements ([`Refinement::gradients`]).
+    /// All gradients the refinements took (each one computation of the exact
+    /// sensitivities, plus the central differences of the quantities without
+    /// them).
     pub gradients: u64,
     /// The history: the global stage, then every step of every refinement.
     pub history: Vec<HistoryPoint>,
