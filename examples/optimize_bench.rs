@@ -52,11 +52,12 @@ fn main() {
         "stickslip optimize, one core, objective v_inf, the paper's default f_max = 18897.6 Hz"
     );
     println!(
-        "n = 2: median {:.3} s over {runs} runs (min {:.3} s, max {:.3} s), {} runs of the simulator each",
+        "n = 2: median {:.3} s over {runs} runs (min {:.3} s, max {:.3} s), {} runs of the simulator and {} gradients each",
         median(times.clone()),
         times.iter().copied().fold(f64::INFINITY, f64::min),
         times.iter().copied().fold(0.0, f64::max),
-        found.search.evaluations
+        found.search.evaluations,
+        found.search.gradients
     );
     println!(
         "       v_inf = {v:.9} m/s ± {:.1e}, sigma signal {sigma:.9} m/s, gain {:+.2} %",
@@ -69,9 +70,10 @@ fn main() {
             .install(|| optimize::optimize(&scene, &settings(n)))
             .expect("optimises");
         println!(
-            "n = {n}: {:.3} s, {} runs, v_inf = {:.9} m/s",
+            "n = {n}: {:.3} s, {} runs, {} gradients, v_inf = {:.9} m/s",
             clock.elapsed().as_secs_f64(),
             found.search.evaluations,
+            found.search.gradients,
             found.best.measured.values.v_inf
         );
     }

@@ -13,11 +13,13 @@
 //! * `params`: the parametrisation ([`Shape`], [`Series`]);
 //! * `problem`: stroke, frequency, limits, one evaluation, the merit;
 //! * `objective`: the objectives and the values they are made of;
-//! * [`gradient`]: sensitivities to the signal's parameters (central
-//!   differences for now; the one place derivatives come from);
+//! * [`gradient`]: sensitivities to the signal's parameters (exact for
+//!   `v_inf`, `S` and `U`, central differences for smoothness, durability
+//!   and the start-up; the one place derivatives come from);
 //! * `global`: the seeded Latin hypercube and the choice of starts;
 //! * `local`: BFGS with a weak Wolfe line search (nonsmooth optima);
 //! * `search`: the two stages together, the best feasible result;
+//! * `distinct`: which refinement ends are the same local optimum;
 //! * `pareto`: a front of two objectives;
 //! * `map`: the `v_inf` map over the plane of `n = 2`;
 //! * `output`: the written scene, the comparison, text and JSON;
@@ -35,13 +37,14 @@
 //!   them (when they satisfy the limits).
 //! * It is a local optimum at best: the global stage is a finite sample,
 //!   the local stage stops where it cannot improve, and the count of local
-//!   optima is of those found. `v_inf` has kinks where the event
-//!   structure of the steady orbit changes; the optima seen lie on them,
-//!   where no gradient exists and a central difference mixes the two
-//!   sides.
+//!   optima is of those found (`distinct`). `v_inf` has kinks where the
+//!   event structure of the steady orbit changes; the optima seen lie on
+//!   them, where no gradient exists: the search takes the derivative of
+//!   the side of the point's own orbit there ([`gradient`]).
 //! * The same scene, settings and seed give the same result, bit for bit,
 //!   on any number of threads.
 
+mod distinct;
 mod global;
 pub(crate) mod gradient;
 mod local;
@@ -54,8 +57,8 @@ mod problem;
 mod search;
 pub(crate) mod spec;
 
-pub use gradient::{Param, gradient};
-pub use objective::Objective;
+pub use gradient::{Param, gradient, gradient_by_differences};
+pub use objective::{Objective, Values};
 pub use params::{Series, Shape};
 pub use problem::{Limits, Measured, Problem};
 pub use search::{Found, Search, SearchOptions};

@@ -239,6 +239,7 @@ pub(crate) fn to_json(optimum: &Optimum, written: &Written, timing: Option<Durat
                 "start": i,
                 "iterations": r.iterations,
                 "evaluations": r.evaluations,
+                "gradients": r.gradients,
                 "stop": r.stop.name(),
                 "merit": number(r.merit),
                 "objective": option(r.best.as_ref().and_then(|b| p.reported(first, &b.measured))),
@@ -310,6 +311,7 @@ pub(crate) fn to_json(optimum: &Optimum, written: &Written, timing: Option<Durat
     m.insert("local_optima".into(), json!(optimum.search.local_optima));
     m.insert("refinements".into(), Value::Array(refinements));
     m.insert("evaluations".into(), json!(optimum.search.evaluations));
+    m.insert("gradients".into(), json!(optimum.search.gradients));
     m.insert(
         "history".into(),
         Value::Array(optimum.search.history.iter().map(history_json).collect()),
@@ -387,11 +389,12 @@ pub(crate) fn to_text(optimum: &Optimum, written: &Written, timing: Option<Durat
     let search = &optimum.search;
     let _ = write!(
         t,
-        "search: {} global points, {} local refinements, {} local optima found, {} runs",
+        "search: {} global points, {} local refinements, {} local optima found, {} runs, {} gradients",
         search.samples,
         search.refinements.len(),
         search.local_optima,
-        search.evaluations
+        search.evaluations,
+        search.gradients
     );
     if let Some(time) = timing {
         let _ = write!(t, ", {:.3} s", time.as_secs_f64());

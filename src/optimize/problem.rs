@@ -87,6 +87,9 @@ pub struct Measured {
     pub v_inf_error: Option<f64>,
     /// The steady-state regime.
     pub regime: &'static str,
+    /// The slider's velocity at the boundary of the steady period (m/s),
+    /// where the exact sensitivities start (docs/model.md section 14).
+    pub boundary_velocity: f64,
 }
 
 /// The problem: the scene's motor, actuator and run settings; the stroke,
@@ -234,6 +237,7 @@ impl Problem {
             startup_time: r.startup_time(),
             v_inf_error: r.error.v_inf,
             regime: r.regime().name(),
+            boundary_velocity: r.steady.boundary_velocity,
         })
     }
 

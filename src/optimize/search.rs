@@ -5,10 +5,10 @@
 //! The reported optimum is the best *feasible* signal any run of the
 //! search evaluated ([`Problem::feasible`] on the values the run reports),
 //! whether a global sample, a line-search trial or an accepted step; the
-//! central-difference runs of the gradient only give slopes. Since the
-//! seeds (the sigma and the plain Fourier signal) are evaluated in the
-//! global stage, the optimum is never worse than the better of them
-//! (when feasible).
+//! central-difference runs of a gradient (where it takes any) only give
+//! slopes. Since the seeds (the sigma and the plain Fourier signal) are
+//! evaluated in the global stage, the optimum is never worse than the
+//! better of them (when feasible).
 //!
 //! Each refinement maximises the merit of [`Problem::merit`] with the
 //! penalty weight `mu = 10`; if its last point still violates a limit,
@@ -17,21 +17,16 @@
 //! gathered in start order, so the outcome does not depend on the thread
 //! count.
 //!
-//! **Local optima.** Two refinements that end within
-//! [`SAME_OPTIMUM`] of each other ([`Shape::distance`]) count as one
-//! local optimum; the count is of the optima the refinements found, not a
-//! proof that there are no others.
+//! **Local optima.** Which refinement ends are the same optimum is decided
+//! on their rod signals and merits (`distinct`); the count is of the
+//! optima the refinements found, not a proof that there are no others.
 
-use super::gradient::{coordinate_gradient, runs_per_gradient, shape_parameters};
+use super::gradient::coordinate_gradient;
 use super::local::{self, LocalOptions, Stop};
 use super::params::Shape;
 use super::problem::{Measured, Problem};
 use rayon::prelude::*;
 use std::cell::RefCell;
-
-/// Refinements ending closer than this ([`Shape::distance`]) reached the
-/// same local optimum.
-pub(super) const SAME_OPTIMUM: f64 = 1e-3;
 
 /// Global-stage points closer than this are not both taken as starts.
 pub(super) const START_SEPARATION: f64 = 0.05;
@@ -76,8 +71,12 @@ pub struct Refinement {
     pub stop: Stop,
     /// Accepted steps.
     pub iterations: usize,
-    /// Runs it made (gradients included).
+    /// Simulator runs it made (central differences included).
     pub evaluations: u64,
+    /// Gradients it took (each one computation of the exact sensitivities
+    /// on the steady period of a run already made, plus the central
+    /// differences of the quantities without them).
+    pub gradients: u64,
     /// Its best feasible evaluated signal.
     pub best: Option<Found>,
 }
@@ -93,8 +92,12 @@ pub struct Search {
     pub refinements: Vec<Refinement>,
     /// Distinct local optima among the refinements' ends.
     pub local_optima: usize,
-    /// All runs.
+    /// All simulator runs.
     pub evaluations: u64,
+    /// All gradients the refinements took (each one computation of the exact
+    /// sensitivities, plus the central differences of the quantities without
+    /// them).
+    pub gradients: u64,
     /// The history: the global stage, then every step of every refinement.
     pub history: Vec<HistoryPoint>,
 }
@@ -150,6 +153,7 @@ fn objective_of(problem: &Problem, found: &Option<Found>) -> Option<f64> {
 
 struct State {
     evaluations: u64,
+    gradients: u64,
     best: Option<Found>,
     /// The last evaluated point and its run, for the gradient there.
     last: Option<(Vec<f64>, Result<Measured, String>)>,
@@ -165,12 +169,12 @@ pub(super) fn refine(
     index: usize,
     options: &LocalOptions,
 ) -> (Refinement, Vec<HistoryPoint>) {
-    let n = problem.harmonics;
     let constrained = problem.objective != super::Objective::VInf
         || problem.bound.is_some()
         || !problem.limits.is_empty();
     let state = RefCell::new(State {
         evaluations: 0,
+        gradients: 0,
         best: None,
         last: None,
         history: Vec::new(),
@@ -207,9 +211,12 @@ pub(super) fn refine(
         let gradient = |z: &[f64]| -> Option<Vec<f64>> {
             let m = measure(z).ok()?;
             let shape = Shape::from_coordinates(z);
-            let grads = coordinate_gradient(problem, &shape);
-            state.borrow_mut().evaluations += runs_per_gradient(shape_parameters(n).len());
-            let grads = grads.ok()?;
+            let grads = coordinate_gradient(problem, &shape, &m);
+            let mut s = state.borrow_mut();
+            s.gradients += 1;
+            s.evaluations += grads.runs;
+            drop(s);
+            let grads = grads.values.ok()?;
             Some(
                 grads
                     .iter()
@@ -250,20 +257,10 @@ pub(super) fn refine(
         stop,
         iterations,
         evaluations: s.evaluations,
+        gradients: s.gradients,
         best: s.best,
     };
     (refinement, s.history)
-}
-
-/// The number of distinct ends among `ends` ([`SAME_OPTIMUM`]).
-pub(super) fn distinct(ends: &[Shape]) -> usize {
-    let mut kept: Vec<&Shape> = Vec::new();
-    for e in ends {
-        if kept.iter().all(|k| k.distance(e) >= SAME_OPTIMUM) {
-            kept.push(e);
-        }
-    }
-    kept.len()
 }
 
 /// The search: `seeds` and the Latin hypercube evaluated, refinements from
@@ -311,21 +308,23 @@ pub(super) fn search(problem: &Problem, seeds: &[Shape], options: &SearchOptions
         .collect();
     let mut refinements = Vec::with_capacity(runs.len());
     let mut evaluations = shapes.len() as u64;
+    let mut gradients = 0;
     for (r, h) in runs {
         evaluations += r.evaluations;
+        gradients += r.gradients;
         if let Some(found) = r.best.clone() {
             keep_best(problem, &mut best, found);
         }
         history.extend(h);
         refinements.push(r);
     }
-    let ends: Vec<Shape> = refinements.iter().map(|r| r.to.clone()).collect();
     Search {
         best,
         samples: shapes.len(),
-        local_optima: distinct(&ends),
+        local_optima: super::distinct::local_optima(&refinements),
         refinements,
         evaluations,
+        gradients,
         history,
     }
 }

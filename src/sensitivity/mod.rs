@@ -250,6 +250,36 @@ pub fn of_steady_state(
     })
 }
 
+/// The derivatives of `v_inf` of the branch of the steady orbit's own
+/// event structure, one per parameter (non-finite where the branch has
+/// none, e.g. at a tangential event), without looking for changes of the
+/// structure nearby: [`of_steady_state`]'s [`Derivative::Smooth`] value
+/// wherever that is smooth. Off a change (at any positive distance from
+/// it) this is the derivative of `v_inf` at the scene; exactly on one it
+/// is the one-sided derivative towards the side whose event structure the
+/// orbit has.
+pub(crate) fn own_branch(
+    spec: &SignalSpec,
+    params: &MotorParams,
+    boundary_velocity: f64,
+    parameters: &[Parameter],
+) -> Result<Vec<f64>, Error> {
+    let motor = Motor::new(*params)?;
+    let signal = Signal::build(spec, &motor)?;
+    let orbit = orbit::record(&signal, &motor, boundary_velocity)?;
+    let ctx = Context {
+        signal: &signal,
+        motor: &motor,
+    };
+    parameters
+        .iter()
+        .map(|parameter| {
+            let dir = parameter.tangent(spec, &motor, &signal)?;
+            Ok(ctx.branch(&orbit, &orbit.pieces, &dir)?.v_inf)
+        })
+        .collect()
+}
+
 /// Farthest a jump of the period map is looked for between rest and the
 /// orbit (`selection`), relative to `max |v_R|`.
 pub const SELECTION_REACH: f64 = 1e-2;
