@@ -10,12 +10,15 @@
 use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
 use std::f64::consts::{FRAC_PI_2, TAU};
+use stickslip::Scene;
 use stickslip::optimize::{
     Measured, Objective, OptimizeTable, Overrides, Param, Problem, Series, Settings, Shape, Values,
     gradient, gradient_by_differences,
 };
 use stickslip::sensitivity::{self, Derivative, Parameter};
-use stickslip::{EventKind, Scene};
+
+mod common;
+use common::event_token as token;
 
 /// The problem of `n` harmonics at the paper's default `f_max` (model 6),
 /// with `objective` (its run computes what that objective needs).
@@ -30,22 +33,6 @@ fn problem(n: i64, objective: Objective) -> Problem {
     p.scale = 0.3;
     p.v_ref = 0.3;
     p
-}
-
-/// The name of an event in an event structure (as in
-/// `tests/sensitivity.rs`: a grazing that sticks is the zero of `v_rel` it
-/// is in the limit).
-fn token(kind: &EventKind) -> String {
-    match *kind {
-        EventKind::StickToSlip { to } => format!("exit {to:?}"),
-        EventKind::SlipToStick
-        | EventKind::Grazing {
-            then: stickslip::Mode::Stick,
-        } => "stick".to_owned(),
-        EventKind::Reversal { to } => format!("reversal {to:?}"),
-        EventKind::Grazing { then } => format!("grazing {then:?}"),
-        EventKind::Jump { then, .. } => format!("jump {then:?}"),
-    }
 }
 
 /// The event structure of the steady period of `series` as a cyclic

@@ -10,12 +10,12 @@
 //! * the engine's own `P'(v*)` and `v_inf`, bit for bit.
 
 mod common;
+use common::event_token as token;
 
 use common::ideal_load::{IdealRegime, ideal_load, stall_extra_acceleration};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
-use stickslip::EventKind;
 use stickslip::Indicator;
 use stickslip::Outcome;
 use stickslip::sensitivity::{self, ChangeKind, Derivative, Parameter};
@@ -321,22 +321,6 @@ fn limit_from_rest(
     let tokens: Vec<String> = s.events.iter().map(|e| token(&e.kind)).collect();
     let derivatives = s.entries.iter().map(|e| e.derivative).collect();
     Some((s.v_inf, derivatives, cycle(tokens)))
-}
-
-/// The name of an event in an event structure. A grazing that sticks is
-/// the zero of `v_rel` it is in the limit (decided within the engine's
-/// zero-velocity tolerance): the same branch.
-fn token(kind: &EventKind) -> String {
-    match *kind {
-        EventKind::StickToSlip { to } => format!("exit {to:?}"),
-        EventKind::SlipToStick
-        | EventKind::Grazing {
-            then: stickslip::Mode::Stick,
-        } => "stick".to_owned(),
-        EventKind::Reversal { to } => format!("reversal {to:?}"),
-        EventKind::Grazing { then } => format!("grazing {then:?}"),
-        EventKind::Jump { then, .. } => format!("jump {then:?}"),
-    }
 }
 
 /// A cyclic sequence named by its smallest rotation.

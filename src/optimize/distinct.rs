@@ -31,7 +31,7 @@
 //! refinements found, not a proof that there are no others.
 
 use super::local::Stop;
-use super::params::Shape;
+use super::params::{Shape, min_over_circle};
 use super::search::Refinement;
 use std::f64::consts::TAU;
 
@@ -105,28 +105,7 @@ pub(super) fn signal_distance(a: &Shape, b: &Shape) -> f64 {
             })
             .fold(0.0, f64::max)
     };
-    let grid = 64 * n;
-    let step = TAU / grid as f64;
-    let (mut best, mut s_best) = (at(0.0), 0.0);
-    for i in 1..grid {
-        let s = step * i as f64;
-        let d = at(s);
-        if d < best {
-            best = d;
-            s_best = s;
-        }
-    }
-    let (mut lo, mut hi) = (s_best - step, s_best + step);
-    let golden = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..40 {
-        let (c, d) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
-        if at(c) < at(d) {
-            hi = d;
-        } else {
-            lo = c;
-        }
-    }
-    best.min(at(0.5 * (lo + hi)))
+    min_over_circle(at, 64 * n, 40)
 }
 
 /// True if two ends (shape, merit) are the same optimum (module docs).

@@ -13,6 +13,24 @@ use stickslip::SignalSpec;
 use stickslip::{EventEngine, EventOptions};
 use stickslip::{Motor, MotorParams, Scene, Signal};
 
+/// The name of an event in an event structure (`tests/sensitivity.rs`,
+/// `tests/optimize_gradient.rs`). A grazing that sticks is the zero of
+/// `v_rel` it is in the limit (decided within the engine's zero-velocity
+/// tolerance): the same branch.
+pub fn event_token(kind: &stickslip::EventKind) -> String {
+    use stickslip::EventKind;
+    match *kind {
+        EventKind::StickToSlip { to } => format!("exit {to:?}"),
+        EventKind::SlipToStick
+        | EventKind::Grazing {
+            then: stickslip::Mode::Stick,
+        } => "stick".to_owned(),
+        EventKind::Reversal { to } => format!("reversal {to:?}"),
+        EventKind::Grazing { then } => format!("grazing {then:?}"),
+        EventKind::Jump { then, .. } => format!("jump {then:?}"),
+    }
+}
+
 /// The paper's motor (docs/model.md section 6).
 pub fn paper_motor() -> Motor {
     Motor::default()
