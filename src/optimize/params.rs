@@ -236,6 +236,35 @@ pub(super) fn wrap(angle: f64) -> f64 {
     if w >= TAU { 0.0 } else { w }
 }
 
+/// The smallest value of `at` over a period `[0, 2 pi)` of its argument:
+/// the best of `grid` equally spaced points, then `iterations` steps of a
+/// golden-section search in the two grid steps around it (the minimum
+/// of a function that is unimodal there, to the grid's resolution
+/// otherwise).
+pub(super) fn min_over_circle(at: impl Fn(f64) -> f64, grid: usize, iterations: usize) -> f64 {
+    let step = TAU / grid as f64;
+    let (mut best, mut s_best) = (at(0.0), 0.0);
+    for i in 1..grid {
+        let s = step * i as f64;
+        let d = at(s);
+        if d < best {
+            best = d;
+            s_best = s;
+        }
+    }
+    let (mut lo, mut hi) = (s_best - step, s_best + step);
+    let golden = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..iterations {
+        let (c, d) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
+        if at(c) < at(d) {
+            hi = d;
+        } else {
+            lo = c;
+        }
+    }
+    best.min(at(0.5 * (lo + hi)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -338,33 +367,4 @@ mod tests {
         let (r, p) = shape.ratio_and_phase();
         assert!((r - 0.25).abs() < 1e-15 && (p - 3.0).abs() < 1e-15);
     }
-}
-
-/// The smallest value of `at` over a period `[0, 2 pi)` of its argument:
-/// the best of `grid` equally spaced points, then `iterations` steps of a
-/// golden-section search in the two grid steps around it (the minimum
-/// of a function that is unimodal there, to the grid's resolution
-/// otherwise).
-pub(super) fn min_over_circle(at: impl Fn(f64) -> f64, grid: usize, iterations: usize) -> f64 {
-    let step = TAU / grid as f64;
-    let (mut best, mut s_best) = (at(0.0), 0.0);
-    for i in 1..grid {
-        let s = step * i as f64;
-        let d = at(s);
-        if d < best {
-            best = d;
-            s_best = s;
-        }
-    }
-    let (mut lo, mut hi) = (s_best - step, s_best + step);
-    let golden = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..iterations {
-        let (c, d) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
-        if at(c) < at(d) {
-            hi = d;
-        } else {
-            lo = c;
-        }
-    }
-    best.min(at(0.5 * (lo + hi)))
 }
