@@ -182,9 +182,7 @@ pub fn of_steady_state(
     boundary_velocity: f64,
     parameters: &[Parameter],
 ) -> Result<Sensitivities, Error> {
-    let motor = Motor::new(*params)?;
-    let signal = Signal::build(spec, &motor)?;
-    let orbit = orbit::record(&signal, &motor, boundary_velocity)?;
+    let (motor, signal, orbit) = steady_orbit(spec, params, boundary_velocity)?;
     let ctx = Context {
         signal: &signal,
         motor: &motor,
@@ -264,9 +262,7 @@ pub(crate) fn own_branch(
     boundary_velocity: f64,
     parameters: &[Parameter],
 ) -> Result<Vec<f64>, Error> {
-    let motor = Motor::new(*params)?;
-    let signal = Signal::build(spec, &motor)?;
-    let orbit = orbit::record(&signal, &motor, boundary_velocity)?;
+    let (motor, signal, orbit) = steady_orbit(spec, params, boundary_velocity)?;
     let ctx = Context {
         signal: &signal,
         motor: &motor,
@@ -278,6 +274,20 @@ pub(crate) fn own_branch(
             Ok(ctx.branch(&orbit, &orbit.pieces, &dir)?.v_inf)
         })
         .collect()
+}
+
+/// The scene's motor and signal and the steady orbit through
+/// `boundary_velocity`, as both [`of_steady_state`] and [`own_branch`]
+/// start from.
+fn steady_orbit(
+    spec: &SignalSpec,
+    params: &MotorParams,
+    boundary_velocity: f64,
+) -> Result<(Motor, Signal, orbit::Orbit), Error> {
+    let motor = Motor::new(*params)?;
+    let signal = Signal::build(spec, &motor)?;
+    let orbit = orbit::record(&signal, &motor, boundary_velocity)?;
+    Ok((motor, signal, orbit))
 }
 
 /// Farthest a jump of the period map is looked for between rest and the
