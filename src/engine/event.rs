@@ -6,9 +6,9 @@
 //! need root finding.
 //!
 //! Once per signal the period is cut into pieces by the roots of
-//! `a_R(tau) = c` for `c` in `{a_0^+, a_0^-, a_d + g_t, -a_d + g_t}`
-//! ([`Signal::partition`], all roots of a trigonometric polynomial). These
-//! pieces serve every period:
+//! `a_R(tau) = c` for `c` in `{a_d + g_t, -a_d + g_t}` and, when first
+//! needed, `{a_0^+, a_0^-}` ([`Signal::partition`], all roots of a
+//! trigonometric polynomial). These pieces serve every period:
 //!
 //! * **Stick -> slip**: the stick band `[a_0^-, a_0^+]` partition says on
 //!   which pieces `a_R` is inside the band; a stuck slider stays stuck to the
@@ -34,7 +34,13 @@
 //! * **What a zero of `v_rel` leads to** is decided by the band piece right
 //!   of the event time: inside the band the slider sticks, above it slips
 //!   forward, below it slips backward (docs/model.md section 1; the law is
-//!   [`super::contact`], shared with the fixed-step reference).
+//!   [`super::contact`], shared with the fixed-step reference). For a
+//!   series, `a_R` at the event time stands in for the band pieces where
+//!   it lies farther than a rounding margin from both band edges
+//!   ([`Signal::partition_margin`]: there the pieces give the same band),
+//!   so the partitions of `a_0^+` and `a_0^-` are found only when a
+//!   slider sticks or a zero of `v_rel` falls within the margin of an
+//!   edge; a slip-slip motion usually never needs them.
 //! * **The departure skip**: after an event that leaves `v_rel = 0` and
 //!   starts a slip (stick -> slip, reversal, grazing without sticking), the
 //!   root search starts at the end of the piece that holds the event. On that
@@ -77,6 +83,7 @@ use crate::motor::Motor;
 use crate::signal::{Partition, RodState, Signal};
 use detect::{Found, SlipPieces, band_pieces};
 use rayon::prelude::*;
+use std::sync::OnceLock;
 
 pub(crate) use super::contact::Band;
 
@@ -122,7 +129,12 @@ pub struct EventEngine<'s> {
     period: f64,
     slip_forward: SlipPieces,
     slip_backward: SlipPieces,
-    band: Vec<BandPiece>,
+    /// The stick band pieces, found when first needed ([`EventEngine::band`]).
+    band: OnceLock<Vec<BandPiece>>,
+    /// For a series: the margin beyond which `a_R` evaluated at a phase
+    /// decides the band there without the band pieces
+    /// ([`Signal::partition_margin`] of both band edges).
+    band_margin: Option<f64>,
     jump: Option<f64>,
     /// The friction law, with the zero-velocity tolerance `tol_v`.
     contact: Contact,
@@ -151,8 +163,8 @@ const PARALLEL_DEGREE: usize = 32;
 /// harmonics finds them on the threads of the `rayon` pool: each partition
 /// is a function of its level alone (they share the Taylor models of `a_R`,
 /// found once with its roots), so the result is the same to the bit.
-fn partitions(signal: &Signal, levels: [f64; 4]) -> [Partition; 4] {
-    let mut distinct: Vec<f64> = Vec::with_capacity(4);
+fn partitions<const L: usize>(signal: &Signal, levels: [f64; L]) -> [Partition; L] {
+    let mut distinct: Vec<f64> = Vec::with_capacity(L);
     for level in levels {
         if !distinct.contains(&level) {
             distinct.push(level);
@@ -179,10 +191,12 @@ impl<'s> EventEngine<'s> {
         let period = signal.period();
         let a_fwd = motor.slip_forward_acceleration();
         let a_bwd = motor.slip_backward_acceleration();
-        let [plus, minus, fwd, bwd] =
-            partitions(signal, [motor.a_0_plus(), motor.a_0_minus(), a_fwd, a_bwd]);
+        let [fwd, bwd] = partitions(signal, [a_fwd, a_bwd]);
         let jump = signal.jump_phase();
-        let band = band_pieces(&plus, &minus, jump);
+        let band_margin = signal
+            .partition_margin(motor.a_0_plus())
+            .zip(signal.partition_margin(motor.a_0_minus()))
+            .map(|(plus, minus)| plus.max(minus));
         let v_scale = signal.velocity_scale().max(f64::MIN_POSITIVE);
         let envelope = signal.acceleration_envelope();
         Self {
@@ -190,7 +204,8 @@ impl<'s> EventEngine<'s> {
             period,
             slip_forward: SlipPieces::new(fwd, a_fwd, &envelope),
             slip_backward: SlipPieces::new(bwd, a_bwd, &envelope),
-            band,
+            band: OnceLock::new(),
+            band_margin,
             jump,
             contact: Contact::new(motor, options.velocity_tolerance * v_scale),
             tol_x: options.velocity_tolerance * v_scale * period,
@@ -211,9 +226,14 @@ impl<'s> EventEngine<'s> {
         self.signal
     }
 
-    /// The stick band pieces of a period.
+    /// The stick band pieces of a period, from the partitions of
+    /// `a_R = a_0^+` and `a_R = a_0^-`, found on the first call.
     pub fn band(&self) -> &[BandPiece] {
-        &self.band
+        self.band.get_or_init(|| {
+            let [plus, minus] =
+                partitions(self.signal, [self.contact.a_plus, self.contact.a_minus]);
+            band_pieces(&plus, &minus, self.jump)
+        })
     }
 
     /// The zero-velocity tolerance `tol_v` in m/s.
@@ -221,17 +241,41 @@ impl<'s> EventEngine<'s> {
         self.contact.tol_v
     }
 
+    /// The band piece holding `tau`, its index and band.
     fn band_at(&self, tau: f64) -> (usize, Band) {
-        let i = self
-            .band
-            .partition_point(|p| p.start <= tau)
-            .saturating_sub(1);
-        (i, self.band[i].band)
+        let band = self.band();
+        let i = band.partition_point(|p| p.start <= tau).saturating_sub(1);
+        (i, band[i].band)
+    }
+
+    /// The band right of `tau`. Before the band pieces are found, `a_R(tau)`
+    /// decides where it lies clearly (by more than the margin) above,
+    /// below or inside the band: the band pieces would give the same
+    /// answer ([`Signal::partition_margin`]). Only a phase within the
+    /// margin of an edge, or a stuck slider, needs the band pieces, so a
+    /// motion that never comes near sticking never finds them.
+    fn band_after(&self, tau: f64) -> Band {
+        if let Some(margin) = self.band_margin
+            && self.band.get().is_none()
+        {
+            let a = self.signal.acceleration(tau);
+            let (plus, minus) = (self.contact.a_plus, self.contact.a_minus);
+            if a > plus + margin {
+                return Band::Above;
+            }
+            if a < minus - margin {
+                return Band::Below;
+            }
+            if a < plus - margin && a > minus + margin {
+                return Band::Inside;
+            }
+        }
+        self.band_at(tau).1
     }
 
     /// The mode after `v_rel` takes the value `v_rel` at phase `tau`.
     fn mode_for(&self, v_rel: f64, tau: f64) -> Mode {
-        self.contact.mode(v_rel, || self.band_at(tau).1)
+        self.contact.mode(v_rel, || self.band_after(tau))
     }
 
     fn is_jump(&self, tau: f64) -> bool {

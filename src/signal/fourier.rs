@@ -326,6 +326,47 @@ impl FourierSignal {
         direct + self.fast.as_ref().map_or(0.0, |f| f.velocity_rounding())
     }
 
+    /// A bound on the rounding error of [`FourierSignal::acceleration`] at
+    /// any phase, built as [`FourierSignal::velocity_rounding`]:
+    /// `64 ε Σ_k √k |(k w)^2 (A_k, B_k)|`, plus the error of the phase,
+    /// `2 ε T Σ_k k w |(k w)^2 (A_k, B_k)|` (the largest jerk times it),
+    /// plus the Horner rounding of the slices if they evaluate.
+    pub(crate) fn acceleration_rounding(&self) -> f64 {
+        let (mut sum, mut jerk) = (0.0, 0.0);
+        for (i, (a, b)) in self.acc.iter().enumerate() {
+            let k = (i + 1) as f64;
+            sum += k.sqrt() * a.hypot(*b);
+            jerk += k * self.omega * a.hypot(*b);
+        }
+        let direct = 64.0 * f64::EPSILON * sum + 2.0 * f64::EPSILON * self.period * jerk;
+        direct
+            + self
+                .fast
+                .as_ref()
+                .map_or(0.0, |f| f.acceleration_rounding())
+    }
+
+    /// A margin beyond which a computed `a_R(tau) - level` has the sign of
+    /// the piece of [`Signal::partition`](super::Signal::partition) of
+    /// `level` that holds `tau`. A piece's sign is that of `a_R - level` on
+    /// it; a sign change between the partition's boundary (a computed root
+    /// `θ_r`) and the true root makes `|a_R - level|` at most the root
+    /// finder's residual, `η + |p'(θ_r)| ulp(θ_r)` with
+    /// `η = 16 ε (|level| + Σ √k |a_k|)` (`TrigPoly::roots`), and merged
+    /// close roots and tangencies have `|a_R - level|` at that level
+    /// between them. Four times that residual plus the evaluation's own
+    /// rounding ([`FourierSignal::acceleration_rounding`]) is the margin.
+    pub(crate) fn partition_margin(&self, level: f64) -> f64 {
+        let (mut sum, mut slope) = (level.abs(), 0.0);
+        for (i, (a, b)) in self.acc.iter().enumerate() {
+            let k = (i + 1) as f64;
+            sum += k.sqrt() * (a.abs() + b.abs());
+            slope += k * (a.abs() + b.abs());
+        }
+        let residual = 16.0 * f64::EPSILON * sum + 2.0 * PI * f64::EPSILON * slope;
+        4.0 * (residual + self.acceleration_rounding())
+    }
+
     /// Position at phase `tau` (m).
     pub fn position(&self, tau: f64) -> f64 {
         if let Some(f) = &self.fast {

@@ -545,6 +545,18 @@ impl Signal {
         }
     }
 
+    /// A margin beyond which the sign of a computed `a_R(tau) - level`
+    /// ([`Signal::acceleration`]) is the sign of the piece of
+    /// [`Signal::partition`] of `level` that holds `tau`, so that the
+    /// evaluation can stand in for the partition; `None` for the ideal
+    /// signal, whose partitions cost nothing.
+    pub(crate) fn partition_margin(&self, level: f64) -> Option<f64> {
+        match self {
+            Signal::Ideal(_) => None,
+            Signal::Fourier(s) => Some(s.partition_margin(level)),
+        }
+    }
+
     /// Smallest and largest rod velocity over a period, exact (from the
     /// roots of `a_R`; for the ideal signal `0` and `a_R t_1`).
     pub fn velocity_range(&self) -> (f64, f64) {

@@ -32,7 +32,8 @@
 //! cheaper and is kept. The two differ by rounding only: both are computed
 //! from the same coefficients, the slices add the truncation above and the
 //! rounding of the Horner pass (`≤ 2 J ε Σ_j |coefficient_j|`, which
-//! [`Piecewise::velocity_rounding`] adds to the signal's rounding bound).
+//! [`Piecewise::velocity_rounding`] and [`Piecewise::acceleration_rounding`]
+//! add to the signal's rounding bounds).
 //! `tests/piecewise.rs` compares the two on random series up to `n = 256`.
 
 use crate::numerics::taylor;
@@ -68,6 +69,8 @@ pub(crate) struct Piecewise {
     slices: Vec<Slice>,
     /// Bound on the Horner rounding of a computed `v_R` (m/s).
     v_rounding: f64,
+    /// Bound on the Horner rounding of a computed `a_R` (m/s^2).
+    a_rounding: f64,
 }
 
 impl Piecewise {
@@ -81,6 +84,7 @@ impl Piecewise {
         let d = omega / r;
         let h = TAU / count as f64;
         let mut v_rounding: f64 = 0.0;
+        let mut a_rounding: f64 = 0.0;
         let slices: Vec<Slice> = (0..count)
             .map(|i| {
                 let m = (i as f64 + 0.5) * h;
@@ -104,6 +108,7 @@ impl Piecewise {
                 }
                 let mass: f64 = slice.v.iter().map(|c| c.abs()).sum();
                 v_rounding = v_rounding.max(mass);
+                a_rounding = a_rounding.max(slice.a.iter().map(|c| c.abs()).sum());
                 slice
             })
             .collect();
@@ -113,6 +118,7 @@ impl Piecewise {
             r,
             slices,
             v_rounding: 4.0 * ORDER as f64 * f64::EPSILON * v_rounding,
+            a_rounding: 4.0 * ORDER as f64 * f64::EPSILON * a_rounding,
         }
     }
 
@@ -121,6 +127,11 @@ impl Piecewise {
     /// rule on `|s| ≤ 1`).
     pub(crate) fn velocity_rounding(&self) -> f64 {
         self.v_rounding
+    }
+
+    /// The same bound for a computed `a_R`, `4 J ε max_i Σ_j |a_ij|`.
+    pub(crate) fn acceleration_rounding(&self) -> f64 {
+        self.a_rounding
     }
 
     /// The slice of phase `tau` and the slice variable `s`.

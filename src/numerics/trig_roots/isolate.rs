@@ -35,7 +35,7 @@ pub(super) type Coeffs = [f64; ORDER];
 /// Also returns, for each top-level interval `i` (centre `(i + 1/2) 2π/N`),
 /// a bound on `max |p|` over it: `Σ_j |g_j| + δ_0` of its model (module
 /// docs of the parent, step 1: the model plus its error bound covers `p`).
-pub(super) fn candidates(p: &TrigPoly, n: usize, eta: f64) -> (Vec<f64>, Vec<f64>) {
+pub(super) fn candidates(p: &TrigPoly, n: usize, eta: f64) -> (Vec<Candidate>, Vec<f64>, Models) {
     Finder::new(p, n, eta).run(None)
 }
 
@@ -48,7 +48,7 @@ pub(super) fn candidates_with(
     n: usize,
     eta: f64,
     models: &[Coeffs],
-) -> (Vec<f64>, Vec<f64>) {
+) -> (Vec<Candidate>, Vec<f64>, Models) {
     Finder::new(p, n, eta).run(Some(models))
 }
 
@@ -61,6 +61,39 @@ pub(super) fn harmonic_models(p: &TrigPoly, n: usize) -> Vec<Coeffs> {
     (0..finder.count)
         .map(|i| finder.harmonic_sums((i as f64 + 0.5) * h))
         .collect()
+}
+
+/// A candidate root `theta` (not wrapped) and, where the solve that found
+/// it evaluated `p` there, the computed `p'(theta)`
+/// ([`TrigPoly::eval_with_derivative`], the same bits).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Candidate {
+    pub(super) theta: f64,
+    pub(super) slope: Option<f64>,
+}
+
+/// The top-level Taylor models of a run, kept for the merge: each model
+/// `q_i` with a bound `unc_i` on `|p(θ) - q_i(s(θ))|` that includes the
+/// rounding of `s` and of the Horner pass (module docs of the parent,
+/// step 4).
+#[derive(Debug, Clone)]
+pub(super) struct Models {
+    r: f64,
+    h: f64,
+    g: Vec<Coeffs>,
+    unc: Vec<f64>,
+}
+
+impl Models {
+    /// Whether `|p(θ)| > margin` is certain from the model of the interval
+    /// holding `θ` (any real `θ`, reduced to `[0, 2π)` first).
+    pub(super) fn exceeds(&self, theta: f64, margin: f64) -> bool {
+        let t = theta.rem_euclid(TAU);
+        let i = ((t / self.h) as usize).min(self.g.len() - 1);
+        let m = (i as f64 + 0.5) * self.h;
+        let s = (t - m) / self.r;
+        s.abs() <= 1.0 && horner(&self.g[i], s).0.abs() - self.unc[i] > margin
+    }
 }
 
 /// What a Taylor model certifies on a piece.
@@ -164,10 +197,16 @@ impl<'a> Finder<'a> {
         }
     }
 
-    fn run(&self, models: Option<&[Coeffs]>) -> (Vec<f64>, Vec<f64>) {
+    fn run(&self, models: Option<&[Coeffs]>) -> (Vec<Candidate>, Vec<f64>, Models) {
         let mut out = Vec::new();
         let mut unresolved = Vec::new();
         let mut bounds = Vec::with_capacity(self.count);
+        let mut kept = Models {
+            r: self.r,
+            h: TAU / self.count as f64,
+            g: Vec::with_capacity(self.count),
+            unc: Vec::with_capacity(self.count),
+        };
         // the sum's own rounding (ORDER terms) is below `ORDER ε` of it
         let inflate = 1.0 + 2.0 * ORDER as f64 * EPS;
         let h = TAU / self.count as f64;
@@ -178,7 +217,15 @@ impl<'a> Finder<'a> {
                 None => self.harmonic_sums(m),
             };
             g[0] += self.p.c0;
-            bounds.push((g.iter().map(|x| x.abs()).sum::<f64>() + self.delta[0]) * inflate);
+            let mass: f64 = g.iter().map(|x| x.abs()).sum();
+            bounds.push((mass + self.delta[0]) * inflate);
+            // model error, the Horner pass (2 ORDER ε of the mass) and the
+            // rounding of s = (θ - m)/r (4 ε (2π + 1)/r times Σ j |g_j|)
+            let slope: f64 = g.iter().enumerate().map(|(j, x)| j as f64 * x.abs()).sum();
+            let rounding =
+                2.0 * ORDER as f64 * EPS * mass + 4.0 * EPS * (TAU + 1.0) / self.r * slope;
+            kept.g.push(g);
+            kept.unc.push(self.delta[0] + SAFETY * rounding);
             let mut stack = vec![(0.0, 1.0)];
             while let Some((c, rho)) = stack.pop() {
                 let (class, piece) = self.classify(&g, m, c, rho);
@@ -197,7 +244,7 @@ impl<'a> Finder<'a> {
             }
         }
         self.resolve_clusters(unresolved, &mut out);
-        (out, bounds)
+        (out, bounds, kept)
     }
 
     /// `g_j = r^j p^{(j)}(m) / j!`, `j < ORDER`: the Taylor coefficients of
@@ -271,30 +318,37 @@ impl<'a> Finder<'a> {
 
     /// A root at rounding level near `theta`: Newton on `p`, kept if it
     /// reaches `|p| ≤ η + |p'| ulp`.
-    fn try_newton(&self, theta: f64, out: &mut Vec<f64>) {
+    fn try_newton(&self, theta: f64, out: &mut Vec<Candidate>) {
         let t = self.p.newton(theta);
-        if self.p.is_zero_at(t, self.eta) {
-            out.push(t);
+        if let Some(slope) = self.p.slope_if_zero_at(t, self.eta) {
+            out.push(Candidate {
+                theta: t,
+                slope: Some(slope),
+            });
         }
     }
 
     /// The root of `p` in `[lo, hi]` (signs `s_lo`, `-s_lo` at the ends,
     /// monotone between), from a model estimate `guess`.
-    fn solve(&self, lo: f64, hi: f64, s_lo: f64, guess: f64) -> f64 {
-        bracketed(|t| self.p.eval_with_derivative(t), lo, hi, s_lo, guess)
+    fn solve(&self, lo: f64, hi: f64, s_lo: f64, guess: f64) -> Candidate {
+        let (theta, _, slope) = bracketed(|t| self.p.eval_with_derivative(t), lo, hi, s_lo, guess);
+        Candidate {
+            theta,
+            slope: slope.is_finite().then_some(slope),
+        }
     }
 
     /// A piece where `p` is strictly monotone (test (M)): one root if the
     /// signs at its ends differ, a rounding-level candidate at an end where
     /// `p` is at rounding level, else none.
-    fn resolve_monotone(&self, piece: &Piece, out: &mut Vec<f64>) {
+    fn resolve_monotone(&self, piece: &Piece, out: &mut Vec<Candidate>) {
         let (lo, hi) = (piece.theta(-1.0), piece.theta(1.0));
         let qa = horner(&piece.e, -1.0).0;
         let qb = horner(&piece.e, 1.0).0;
         let sa = self.sign_at(qa, piece.unc0, lo);
         let sb = self.sign_at(qb, piece.unc0, hi);
         if sa * sb < 0.0 {
-            let u = bracketed(|u| horner(&piece.e, u), -1.0, 1.0, sa, 0.0);
+            let u = bracketed(|u| horner(&piece.e, u), -1.0, 1.0, sa, 0.0).0;
             out.push(self.solve(lo, hi, sa, piece.theta(u)));
             return;
         }
@@ -308,7 +362,7 @@ impl<'a> Finder<'a> {
 
     /// A piece where `p''` keeps its sign (test (C)): `p` has one extremum
     /// `θ_c` (or none, then it is monotone) and at most one root on each side.
-    fn resolve_convex(&self, piece: &Piece, mu_u: f64, out: &mut Vec<f64>) {
+    fn resolve_convex(&self, piece: &Piece, mu_u: f64, out: &mut Vec<Candidate>) {
         let (lo, hi) = (piece.theta(-1.0), piece.theta(1.0));
         let da = horner(&piece.e, -1.0).1;
         let db = horner(&piece.e, 1.0).1;
@@ -320,7 +374,7 @@ impl<'a> Finder<'a> {
         }
         // the critical point: model estimate, then Newton on p'
         let uc = if da.signum() != db.signum() {
-            bracketed(|u| horner2(&piece.e, u), -1.0, 1.0, da.signum(), 0.0)
+            bracketed(|u| horner2(&piece.e, u), -1.0, 1.0, da.signum(), 0.0).0
         } else if da.abs() < db.abs() {
             -1.0
         } else {
@@ -330,7 +384,10 @@ impl<'a> Finder<'a> {
         let (pc, dpc) = self.p.eval_with_derivative(tc);
         if pc.abs() <= self.eta {
             // extremum at rounding level: a tangency, reported once
-            out.push(tc);
+            out.push(Candidate {
+                theta: tc,
+                slope: None,
+            });
             return;
         }
         // second-order bound: min over the piece of σ p ≥ σ p(θ_c) - p'(θ_c)²/(2μ)
@@ -349,7 +406,7 @@ impl<'a> Finder<'a> {
             if s_end == -sc {
                 let (ul, uh) = if u_end < uc { (u_end, uc) } else { (uc, u_end) };
                 let s_low = if u_end < uc { s_end } else { sc };
-                let u = bracketed(|u| horner(&piece.e, u), ul, uh, s_low, 0.5 * (ul + uh));
+                let u = bracketed(|u| horner(&piece.e, u), ul, uh, s_low, 0.5 * (ul + uh)).0;
                 let (tl, th) = if end < tc { (end, tc) } else { (tc, end) };
                 out.push(self.solve(tl, th, s_low, piece.theta(u)));
             } else if s_end == 0.0 {
@@ -381,7 +438,7 @@ impl<'a> Finder<'a> {
     /// level), joined into clusters: a root for each certified sign change
     /// between samples, and the sample of smallest `|p|` if it is at rounding
     /// level.
-    fn resolve_clusters(&self, mut pieces: Vec<(f64, f64)>, out: &mut Vec<f64>) {
+    fn resolve_clusters(&self, mut pieces: Vec<(f64, f64)>, out: &mut Vec<Candidate>) {
         pieces.sort_by(|x, y| x.0.total_cmp(&y.0));
         let mut clusters: Vec<(f64, f64)> = Vec::new();
         for (lo, hi) in pieces {
@@ -457,20 +514,27 @@ fn horner2(e: &Coeffs, u: f64) -> (f64, f64) {
 /// Zero of `f` on `[lo, hi]` where `f(lo)` has the sign `sign_lo` and `f(hi)`
 /// the opposite one: Newton from `x0`, bisection whenever a step would leave
 /// the shrinking bracket or is not at least halving the step before last
-/// (rtsafe). Returns the iterate of smallest `|f|`.
-fn bracketed(f: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64, sign_lo: f64, x0: f64) -> f64 {
+/// (rtsafe). Returns the iterate of smallest `|f|`, with `|f|` and `f'`
+/// there (`f' = NaN` if `f` was never evaluated).
+fn bracketed(
+    f: impl Fn(f64) -> (f64, f64),
+    lo: f64,
+    hi: f64,
+    sign_lo: f64,
+    x0: f64,
+) -> (f64, f64, f64) {
     let (mut lo, mut hi) = (lo, hi);
     let mut x = if x0 > lo && x0 < hi {
         x0
     } else {
         0.5 * (lo + hi)
     };
-    let mut best = (x, f64::INFINITY);
+    let mut best = (x, f64::INFINITY, f64::NAN);
     let (mut step, mut step_before) = (hi - lo, hi - lo);
     for _ in 0..MAX_ITERS {
         let (fx, dfx) = f(x);
         if fx.abs() < best.1 {
-            best = (x, fx.abs());
+            best = (x, fx.abs(), dfx);
         }
         if fx == 0.0 || fx.is_nan() {
             break;
@@ -496,5 +560,5 @@ fn bracketed(f: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64, sign_lo: f64, x0: 
         }
         x = next;
     }
-    best.0
+    best
 }

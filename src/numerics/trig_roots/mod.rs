@@ -130,6 +130,8 @@ use nalgebra::Complex;
 mod eigen;
 mod isolate;
 
+use isolate::{Candidate, Models};
+
 /// Machine epsilon.
 const EPS: f64 = f64::EPSILON;
 /// Safety factor of the rounding level `η` over the measured evaluation error.
@@ -375,8 +377,8 @@ impl TrigPoly {
             return (Vec::new(), vec![self.c0.abs() + self.coefficient_mass()]);
         };
         let eta = p.eval_error_bound();
-        let (found, bounds) = isolate::candidates(&p, n, eta);
-        let roots = p.merge(found.into_iter().map(wrap).collect(), eta);
+        let (found, bounds, models) = isolate::candidates(&p, n, eta);
+        let roots = p.merge(found, eta, Some(&models));
         (roots, bounds.into_iter().map(|b| ldexp(b, -e)).collect())
     }
 
@@ -414,7 +416,10 @@ impl TrigPoly {
         };
         let eta = p.eval_error_bound();
         let found = p.eigenvalue_candidates(n, eta);
-        p.merge(found.into_iter().map(wrap).collect(), eta)
+        let found = found
+            .into_iter()
+            .map(|theta| Candidate { theta, slope: None });
+        p.merge(found.collect(), eta, None)
     }
 
     /// `p` scaled by the power of two that brings its largest coefficient into
@@ -460,8 +465,24 @@ impl TrigPoly {
 
     /// `|p(θ)|` is at rounding level: `≤ η + |p'(θ)| ulp(θ)`.
     fn is_zero_at(&self, theta: f64, eta: f64) -> bool {
+        self.slope_if_zero_at(theta, eta).is_some()
+    }
+
+    /// The computed `p'(θ)` if `|p(θ)|` is at rounding level
+    /// ([`TrigPoly::is_zero_at`]).
+    fn slope_if_zero_at(&self, theta: f64, eta: f64) -> Option<f64> {
         let (p, dp) = self.eval_with_derivative(theta);
-        p.abs() <= eta + dp.abs() * EPS * theta.abs().max(1.0)
+        (p.abs() <= eta + dp.abs() * EPS * theta.abs().max(1.0)).then_some(dp)
+    }
+
+    /// `Σ_k k^l (|a_k| + |b_k|)`, a bound on `|p^{(l)}|` over the circle.
+    fn derivative_bound(&self, l: i32) -> f64 {
+        self.a
+            .iter()
+            .zip(&self.b)
+            .enumerate()
+            .map(|(i, (a, b))| ((i + 1) as f64).powi(l) * (a.abs() + b.abs()))
+            .sum()
     }
 
     /// Newton on `p` with steps bounded by `NEWTON_MAX_STEP`; returns the
@@ -511,36 +532,70 @@ impl TrigPoly {
         Some(theta)
     }
 
-    /// Groups the accepted values (in `[0, 2π)`) that are one root — `p` at
-    /// rounding level between neighbours, cyclically — and returns one value
-    /// per group, sorted, in `[0, 2π)`.
-    fn merge(&self, mut roots: Vec<f64>, eta: f64) -> Vec<f64> {
-        if roots.is_empty() {
-            return roots;
+    /// Groups the candidates that are one root — `p` at rounding level
+    /// between neighbours, cyclically — and returns one value per group,
+    /// sorted, in `[0, 2π)`.
+    ///
+    /// With the finder's `models`, a midpoint where a model proves
+    /// `|p| > 2η + 2 ε max(|θ|, 1) Σ k (|a_k| + |b_k|)` is not evaluated:
+    /// the computed `|p|` there (within `η` of the true one) exceeds the
+    /// rounding level `η + |p'| ulp`, so the evaluation would separate the
+    /// neighbours too. A single candidate whose solve left `p'` and whose
+    /// `|p'| > 4 sqrt(2 η Σ k² (|a_k| + |b_k|))` is no tangency (see
+    /// [`TrigPoly::representative`]) and is its own value without another
+    /// evaluation. Both give the same values, to the bit, as evaluating.
+    fn merge(&self, mut found: Vec<Candidate>, eta: f64, models: Option<&Models>) -> Vec<f64> {
+        for c in &mut found {
+            let theta = wrap(c.theta);
+            if theta.to_bits() != c.theta.to_bits() {
+                c.slope = None;
+            }
+            c.theta = theta;
         }
-        roots.sort_by(f64::total_cmp);
+        if found.is_empty() {
+            return Vec::new();
+        }
+        found.sort_by(|x, y| x.theta.total_cmp(&y.theta));
+        let d1 = self.derivative_bound(1);
+        let steep = 4.0 * (2.0 * eta * self.derivative_bound(2)).sqrt();
         let same = |x: f64, y: f64| {
-            y - x <= 4.0 * EPS * y.abs().max(1.0) || self.is_zero_at(0.5 * (x + y), eta)
+            let mid = 0.5 * (x + y);
+            let apart = models
+                .is_some_and(|m| m.exceeds(mid, 2.0 * eta + 2.0 * d1 * EPS * mid.abs().max(1.0)));
+            y - x <= 4.0 * EPS * y.abs().max(1.0) || (!apart && self.is_zero_at(mid, eta))
         };
-        let mut groups: Vec<Vec<f64>> = vec![vec![roots[0]]];
-        for w in roots.windows(2) {
+        let mut groups: Vec<Vec<Candidate>> = vec![vec![found[0]]];
+        for w in found.windows(2) {
             match groups.last_mut() {
-                Some(g) if same(w[0], w[1]) => g.push(w[1]),
+                Some(g) if same(w[0].theta, w[1].theta) => g.push(w[1]),
                 _ => groups.push(vec![w[1]]),
             }
         }
+        let last = found[found.len() - 1].theta;
         // across the seam: the last group continues the first one
         if groups.len() > 1
-            && same(roots[roots.len() - 1] - TAU, roots[0])
+            && same(last - TAU, found[0].theta)
             && let Some(last) = groups.pop()
         {
-            let mut joined: Vec<f64> = last.into_iter().map(|t| t - TAU).collect();
+            let mut joined: Vec<Candidate> = last
+                .into_iter()
+                .map(|c| Candidate {
+                    theta: c.theta - TAU,
+                    slope: None,
+                })
+                .collect();
             joined.append(&mut groups[0]);
             groups[0] = joined;
         }
         let mut out: Vec<f64> = groups
             .iter()
-            .map(|g| wrap(self.representative(g, eta)))
+            .map(|g| match g.as_slice() {
+                [c] if c.slope.is_some_and(|d| d.abs() > steep) => c.theta,
+                _ => {
+                    let thetas: Vec<f64> = g.iter().map(|c| c.theta).collect();
+                    wrap(self.representative(&thetas, eta))
+                }
+            })
             .collect();
         out.sort_by(f64::total_cmp);
         out.dedup();
@@ -550,7 +605,8 @@ impl TrigPoly {
     /// One value for a group (sorted, nonempty) of accepted values that are
     /// one root: the member of smallest `|p|`, replaced by the critical point of
     /// `p` when the group looks like a tangency (several members, or
-    /// `p' ≈ 0`) and that point is within the group and at rounding level.
+    /// `|p'| <= 4 sqrt(η |p''|)`) and that point is within the group and at
+    /// rounding level.
     fn representative(&self, group: &[f64], eta: f64) -> f64 {
         let abs_p = |x: f64| self.eval(x).abs();
         let best = group
@@ -611,8 +667,8 @@ impl LevelRoots {
             return q.roots_and_envelope();
         }
         let eta = p.eval_error_bound();
-        let (found, bounds) = isolate::candidates_with(&p, n, eta, models);
-        let roots = p.merge(found.into_iter().map(wrap).collect(), eta);
+        let (found, bounds, kept) = isolate::candidates_with(&p, n, eta, models);
+        let roots = p.merge(found, eta, Some(&kept));
         (roots, bounds.into_iter().map(|b| ldexp(b, -e)).collect())
     }
 
