@@ -155,8 +155,11 @@ pub struct EventEngine<'s> {
 }
 
 /// Fewest harmonics for which [`partitions`] finds its levels on several
-/// threads (below, a level takes well under 0.1 ms).
-const PARALLEL_DEGREE: usize = 32;
+/// threads. Below, a level takes under 0.2 ms and starting the thread
+/// pool costs a whole process about as much as it saves (whole-process
+/// medians of `stickslip run` at `n = 64`: 2.82 ms sequential, 2.99 ms on
+/// the pool; at `n = 256`: 8.6 ms and 8.1 ms).
+const PARALLEL_DEGREE: usize = 128;
 
 /// The partitions of the period at `levels` (docs/model.md section 8),
 /// each distinct level found once. A series of [`PARALLEL_DEGREE`] or more

@@ -78,7 +78,13 @@
 //!    them and is kept. A merged group, or a root with `p' ≈ 0`, is reported
 //!    once: at the critical point of `p` if that lies within the group and
 //!    `|p|` is at rounding level there, else at the member of smallest `|p|`.
-//!    The values are wrapped into `[0, 2π)` and sorted.
+//!    The values are wrapped into `[0, 2π)` and sorted. Two shortcuts give
+//!    the same values without most of these evaluations: a midpoint where
+//!    the top-level model of step 1 proves `|p|` above the rounding level
+//!    (model value less its error bound, which adds the Horner pass and the
+//!    rounding of the model variable) is not evaluated, and a lone root
+//!    whose solve left `|p'| > 4 sqrt(2η Σ k²(|a_k| + |b_k|))` is no
+//!    tangency and needs no second-derivative evaluation.
 //!
 //! # No root is missed
 //!
