@@ -5,6 +5,7 @@
 //! (`g`, `e`, `δ_0`, `u_0`, ...) follow it.
 
 use std::f64::consts::{PI, TAU};
+use std::sync::OnceLock;
 
 use super::{EPS, NEWTON_ITERS, TrigPoly};
 use crate::numerics::taylor;
@@ -26,6 +27,10 @@ const FLOOR: f64 = 6.0e-8;
 const MAX_ITERS: usize = 100;
 /// Interior samples of an unresolved cluster.
 const CLUSTER_SAMPLES: usize = 8;
+/// `γ` of the rounding of the Taylor shift (module docs of the parent, (R4)).
+const GAMMA: f64 = SAFETY * (2 * ORDER + 4) as f64 * EPS;
+/// Rounding of a Horner pass over a shifted model, relative to its mass.
+const HORNER: f64 = SAFETY * 2.0 * ORDER as f64 * EPS;
 
 /// Coefficients of a Taylor model in its scaled variable.
 pub(super) type Coeffs = [f64; ORDER];
@@ -39,28 +44,47 @@ pub(super) fn candidates(p: &TrigPoly, n: usize, eta: f64) -> (Vec<Candidate>, V
     Finder::new(p, n, eta).run(None)
 }
 
-/// [`candidates`] with the models' sums over the harmonics given
-/// (`models[i]` is [`Finder::harmonic_sums`] of interval `i` of a
-/// polynomial with the same normalised harmonics and degree `n`; only `c0`
-/// may differ): the same values, to the bit, without their `O(n^2)` cost.
+/// [`candidates`] with the level-independent part of the work given
+/// (`shared` from [`Shared::new`] for a polynomial with the same
+/// normalised harmonics and degree `n`; only `c0` may differ): the same
+/// values, to the bit, without its cost.
 pub(super) fn candidates_with(
     p: &TrigPoly,
     n: usize,
     eta: f64,
-    models: &[Coeffs],
+    shared: &Shared,
 ) -> (Vec<Candidate>, Vec<f64>, Models) {
-    Finder::new(p, n, eta).run(Some(models))
+    Finder::new(p, n, eta).run(Some(shared))
 }
 
-/// The sums over the harmonics of every top-level model of `p` (degree
-/// `n`, normalised), without `c0`: what [`candidates_with`] shares between
-/// polynomials that differ only in `c0`.
-pub(super) fn harmonic_models(p: &TrigPoly, n: usize) -> Vec<Coeffs> {
-    let finder = Finder::new(p, n, 0.0);
-    let h = TAU / finder.count as f64;
-    (0..finder.count)
-        .map(|i| finder.harmonic_sums((i as f64 + 0.5) * h))
-        .collect()
+/// What [`candidates_with`] shares between polynomials that differ only in
+/// `c0`: the top-level models' sums over the harmonics (without `c0`), and
+/// the subdivision of every top-level interval. Of the tests (E), (M), (C)
+/// only (E) depends on `c0` (module docs of the parent, step 2): a piece's
+/// shifted model differs between levels only in its constant term `e_0`,
+/// which is `g_0 + X` with `X` the same for every level (the Taylor shift
+/// adds `g_0` in its very last operation), and (M), (C) read only `e_1`,
+/// `e_2`, ... So each piece keeps its shifted model, `X`, and its (M)/(C)
+/// class; its halves are made the first time a level needs them and kept
+/// for the next. A level then tests only (E) and resolves its own pieces.
+#[derive(Debug)]
+pub(super) struct Shared {
+    sums: Vec<Coeffs>,
+    trees: Vec<Node>,
+}
+
+impl Shared {
+    /// The shared part for the normalised `p` of degree `n` (its `c0` is
+    /// not used).
+    pub(super) fn new(p: &TrigPoly, n: usize) -> Self {
+        let finder = Finder::new(p, n, 0.0);
+        let h = TAU / finder.count as f64;
+        let sums: Vec<Coeffs> = (0..finder.count)
+            .map(|i| finder.harmonic_sums((i as f64 + 0.5) * h))
+            .collect();
+        let trees = sums.iter().map(|g| finder.node(g, 0.0, 1.0)).collect();
+        Self { sums, trees }
+    }
 }
 
 /// A candidate root `theta` (not wrapped) and, where the solve that found
@@ -96,16 +120,35 @@ impl Models {
     }
 }
 
-/// What a Taylor model certifies on a piece.
+/// What a Taylor model certifies on a piece besides (E), which depends on
+/// the level.
+#[derive(Debug, Clone, Copy)]
 enum Class {
-    /// `|p| > 0` on the piece.
-    Excluded,
     /// `|p'| > 0`: at most one root.
     Monotone,
     /// `|p''| ≥ mu_u` (in the scaled variable): at most two roots.
     Convex { mu_u: f64 },
     /// Nothing certified.
     Undecided,
+}
+
+/// A piece `s ∈ [c - ρ, c + ρ]` of a top-level interval with its shifted
+/// model `e` (all but `e_0`, module docs of the parent, step 2), what the
+/// model certifies whatever the level, and its halves once made.
+#[derive(Debug)]
+struct Node {
+    c: f64,
+    rho: f64,
+    /// `e_1, e_2, ...` of the shifted model; `e[0]` is not used.
+    e: Coeffs,
+    /// `e_0 = g_0 + x` (`None`: `e_0 = g_0`, the unshifted top level).
+    x: Option<f64>,
+    /// `Σ_{i≥1} |e_i|`.
+    s0: f64,
+    /// Bound on the error of `q'` (module docs, `U_1`).
+    unc1: f64,
+    class: Class,
+    halves: OnceLock<Box<[Node; 2]>>,
 }
 
 /// A piece `θ = centre + half · u`, `u ∈ [-1, 1]`, with its model
@@ -197,7 +240,7 @@ impl<'a> Finder<'a> {
         }
     }
 
-    fn run(&self, models: Option<&[Coeffs]>) -> (Vec<Candidate>, Vec<f64>, Models) {
+    fn run(&self, shared: Option<&Shared>) -> (Vec<Candidate>, Vec<f64>, Models) {
         let mut out = Vec::new();
         let mut unresolved = Vec::new();
         let mut bounds = Vec::with_capacity(self.count);
@@ -212,8 +255,8 @@ impl<'a> Finder<'a> {
         let h = TAU / self.count as f64;
         for i in 0..self.count {
             let m = (i as f64 + 0.5) * h;
-            let mut g = match models {
-                Some(models) => models[i],
+            let mut g = match shared {
+                Some(shared) => shared.sums[i],
                 None => self.harmonic_sums(m),
             };
             g[0] += self.p.c0;
@@ -226,25 +269,68 @@ impl<'a> Finder<'a> {
                 2.0 * ORDER as f64 * EPS * mass + 4.0 * EPS * (TAU + 1.0) / self.r * slope;
             kept.g.push(g);
             kept.unc.push(self.delta[0] + SAFETY * rounding);
-            let mut stack = vec![(0.0, 1.0)];
-            while let Some((c, rho)) = stack.pop() {
-                let (class, piece) = self.classify(&g, m, c, rho);
-                match class {
-                    Class::Excluded => {}
-                    Class::Monotone => self.resolve_monotone(&piece, &mut out),
-                    Class::Convex { mu_u } => self.resolve_convex(&piece, mu_u, &mut out),
-                    Class::Undecided if piece.half <= FLOOR => {
-                        unresolved.push((piece.theta(-1.0), piece.theta(1.0)));
-                    }
-                    Class::Undecided => {
-                        stack.push((c - 0.5 * rho, 0.5 * rho));
-                        stack.push((c + 0.5 * rho, 0.5 * rho));
-                    }
+            let own;
+            let top = match shared {
+                Some(shared) => &shared.trees[i],
+                None => {
+                    own = self.node(&g, 0.0, 1.0);
+                    &own
                 }
-            }
+            };
+            self.walk(top, &g, m, &mut out, &mut unresolved);
         }
         self.resolve_clusters(unresolved, &mut out);
         (out, bounds, kept)
+    }
+
+    /// The pieces of the top-level interval centred at `m` with model `g`
+    /// (this level's `g_0`), from its tree `top`: test (E) with this level's
+    /// `e_0`, then the piece's (M)/(C) class, halves made when first needed.
+    fn walk(
+        &self,
+        top: &Node,
+        g: &Coeffs,
+        m: f64,
+        out: &mut Vec<Candidate>,
+        unresolved: &mut Vec<(f64, f64)>,
+    ) {
+        // rounding of the shift (module docs, (R4)): Σ_i i^l err_i ≤ γ ρ^l G_l
+        let t0 = GAMMA * g.iter().map(|x| x.abs()).sum::<f64>();
+        let mut stack = vec![top];
+        while let Some(node) = stack.pop() {
+            let e0 = match node.x {
+                Some(x) => g[0] + x,
+                None => g[0],
+            };
+            let unc0 = self.delta[0] + t0 + HORNER * (e0.abs() + node.s0);
+            if e0.abs() - node.s0 > unc0 {
+                continue;
+            }
+            let mut e = node.e;
+            e[0] = e0;
+            let piece = Piece {
+                centre: m + self.r * node.c,
+                half: self.r * node.rho,
+                e,
+                unc0,
+                unc1: node.unc1,
+            };
+            match node.class {
+                Class::Monotone => self.resolve_monotone(&piece, out),
+                Class::Convex { mu_u } => self.resolve_convex(&piece, mu_u, out),
+                Class::Undecided if piece.half <= FLOOR => {
+                    unresolved.push((piece.theta(-1.0), piece.theta(1.0)));
+                }
+                Class::Undecided => {
+                    let (c, rho) = (node.c, 0.5 * node.rho);
+                    let halves = node.halves.get_or_init(|| {
+                        Box::new([self.node(g, c - rho, rho), self.node(g, c + rho, rho)])
+                    });
+                    stack.push(&halves[0]);
+                    stack.push(&halves[1]);
+                }
+            }
+        }
     }
 
     /// `g_j = r^j p^{(j)}(m) / j!`, `j < ORDER`: the Taylor coefficients of
@@ -254,24 +340,19 @@ impl<'a> Finder<'a> {
         taylor::harmonic_sums(&self.p.a[..self.n], &self.p.b[..self.n], &self.powers, m)
     }
 
-    /// The model of the piece `s ∈ [c - ρ, c + ρ]` of the top-level interval
-    /// centred at `m`, and what it certifies (module docs, tests (E), (M), (C)).
-    fn classify(&self, g: &Coeffs, m: f64, c: f64, rho: f64) -> (Class, Piece) {
-        let e = shift(g, c, rho);
-        // rounding of the shift (module docs, (R4)): Σ_i i^l err_i ≤ γ ρ^l G_l
-        let gamma = SAFETY * (2 * ORDER + 4) as f64 * EPS;
-        let horner = SAFETY * 2.0 * ORDER as f64 * EPS;
-        let (mut g0, mut g1, mut g2) = (0.0, 0.0, 0.0);
+    /// The piece `s ∈ [c - ρ, c + ρ]` of a top-level interval with model
+    /// `g` (whose `g_0` is not read): its shifted model and what (M) and
+    /// (C) certify (module docs, step 2).
+    fn node(&self, g: &Coeffs, c: f64, rho: f64) -> Node {
+        let (e, x) = shift(g, c, rho);
+        let (mut g1, mut g2) = (0.0, 0.0);
         let (mut s0, mut s1, mut s2) = (0.0, 0.0, 0.0);
-        for i in 0..ORDER {
+        for i in 1..ORDER {
             let fi = i as f64;
             let (x, y) = (e[i].abs(), g[i].abs());
-            g0 += y;
             g1 += fi * y;
             g2 += fi * (fi - 1.0) * y;
-            if i >= 1 {
-                s0 += x;
-            }
+            s0 += x;
             if i >= 2 {
                 s1 += fi * x;
             }
@@ -279,22 +360,12 @@ impl<'a> Finder<'a> {
                 s2 += fi * (fi - 1.0) * x;
             }
         }
-        let (t0, t1, t2) = (gamma * g0, gamma * rho * g1, gamma * rho * rho * g2);
-        let [d0, d1, d2] = self.delta;
-        let (e0, e1, e2) = (e[0].abs(), e[1].abs(), 2.0 * e[2].abs());
-        let unc0 = d0 + t0 + horner * (e0 + s0);
-        let unc1 = rho * d1 + t1 + horner * (e1 + s1);
-        let unc2 = rho * rho * d2 + t2 + horner * (e2 + s2);
-        let piece = Piece {
-            centre: m + self.r * c,
-            half: self.r * rho,
-            e,
-            unc0,
-            unc1,
-        };
-        let class = if e0 - s0 > unc0 {
-            Class::Excluded
-        } else if e1 - s1 > unc1 {
+        let (t1, t2) = (GAMMA * rho * g1, GAMMA * rho * rho * g2);
+        let [_, d1, d2] = self.delta;
+        let (e1, e2) = (e[1].abs(), 2.0 * e[2].abs());
+        let unc1 = rho * d1 + t1 + HORNER * (e1 + s1);
+        let unc2 = rho * rho * d2 + t2 + HORNER * (e2 + s2);
+        let class = if e1 - s1 > unc1 {
             Class::Monotone
         } else if e2 - s2 > unc2 {
             Class::Convex {
@@ -303,7 +374,16 @@ impl<'a> Finder<'a> {
         } else {
             Class::Undecided
         };
-        (class, piece)
+        Node {
+            c,
+            rho,
+            e,
+            x,
+            s0,
+            unc1,
+            class,
+            halves: OnceLock::new(),
+        }
     }
 
     /// Sign of `p` at `θ`: from the model value `q` if `|q| > unc`, else from
@@ -472,22 +552,30 @@ impl<'a> Finder<'a> {
 
 /// Coefficients of `u ↦ q(c + ρ u)` for `q(s) = Σ g_j s^j`: Taylor shift by
 /// repeated synthetic division (Horner), then scaling by powers of `ρ`
-/// (exact: `ρ` is a power of two).
-fn shift(g: &Coeffs, c: f64, rho: f64) -> Coeffs {
+/// (exact: `ρ` is a power of two). `e_0` is left out: it is `g_0 + X`, the
+/// very last operation of the first pass, and `X` is returned instead
+/// (`None` for `c = 0`, where `e_0 = g_0`), so that one shift serves every
+/// `g_0`.
+fn shift(g: &Coeffs, c: f64, rho: f64) -> (Coeffs, Option<f64>) {
     let mut e = *g;
+    let mut x = None;
     if c != 0.0 {
         for i in 0..ORDER - 1 {
-            for j in (i..ORDER - 1).rev() {
+            for j in (i.max(1)..ORDER - 1).rev() {
                 e[j] += c * e[j + 1];
+            }
+            if i == 0 {
+                x = Some(c * e[1]);
             }
         }
     }
-    let mut w = 1.0;
-    for x in e.iter_mut() {
-        *x *= w;
+    let mut w = rho;
+    for v in e.iter_mut().skip(1) {
+        *v *= w;
         w *= rho;
     }
-    e
+    e[0] = f64::NAN;
+    (e, x)
 }
 
 /// `(q(u), q'(u))` by Horner's rule.

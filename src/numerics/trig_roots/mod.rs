@@ -129,7 +129,7 @@
 //! variants are `O(n)` with one `sin_cos` and no allocation.
 
 use std::f64::consts::TAU;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 use nalgebra::Complex;
 
@@ -639,15 +639,22 @@ impl TrigPoly {
 /// ([`TrigPoly::levels`]). A level changes only `c0`, so the models of
 /// step 1 (module docs) differ only in `g_0`: their sums over the
 /// harmonics, `O(n^2)` in all, are computed for the first level and kept.
-/// Every later level whose normalised polynomial has the same scale and
-/// degree (so the same harmonics to the bit) reuses them, and its roots and
-/// envelope are those of [`TrigPoly::roots_and_envelope`] of `p - level`,
-/// to the bit; any other level is solved on its own.
+/// So is the subdivision of step 2: a piece's shifted model differs
+/// between levels only in `e_0 = g_0 + X` (`X` the same for all), and only
+/// the exclusion test (E) reads `e_0`, so each piece keeps its shift and
+/// its (M)/(C) class, and its halves once made; a later level tests (E)
+/// and resolves its own roots. Every later level whose normalised
+/// polynomial has the same scale and degree (so the same harmonics to the
+/// bit) reuses them, and its roots and envelope are those of
+/// [`TrigPoly::roots_and_envelope`] of `p - level`, to the bit; any other
+/// level is solved on its own. Levels may be solved on several threads at
+/// once.
 #[derive(Debug, Clone)]
 pub struct LevelRoots {
     poly: TrigPoly,
-    /// Scale exponent, degree and harmonic sums of the first level solved.
-    shared: OnceLock<(i32, usize, Vec<isolate::Coeffs>)>,
+    /// Scale exponent and degree of the first level solved, and the work
+    /// its levels share.
+    shared: OnceLock<(i32, usize, Arc<isolate::Shared>)>,
 }
 
 impl LevelRoots {
@@ -668,7 +675,7 @@ impl LevelRoots {
         };
         let (e0, n0, models) = self
             .shared
-            .get_or_init(|| (e, n, isolate::harmonic_models(&p, n)));
+            .get_or_init(|| (e, n, Arc::new(isolate::Shared::new(&p, n))));
         if (*e0, *n0) != (e, n) {
             return q.roots_and_envelope();
         }
