@@ -726,18 +726,61 @@ fn assert_at_rounding_level(p: &TrigPoly, roots: &[f64]) {
     }
 }
 
+/// `Σ_k k^l (|a_k| + |b_k|)`: a bound on `|p^{(l)}|` over the circle.
+fn derivative_bound(p: &TrigPoly, l: i32) -> f64 {
+    p.a.iter()
+        .zip(&p.b)
+        .enumerate()
+        .map(|(i, (a, b))| ((i + 1) as f64).powi(l) * (a.abs() + b.abs()))
+        .sum()
+}
+
+/// The number of roots of `p` in `[lo, hi]`, counted by a method of its own
+/// (global derivative bounds, not the finder's Taylor models): with `m`
+/// the midpoint, `h` the half-width and `M_l` = [`derivative_bound`],
+/// * `|p(m)| > |p'(m)| h + M_2 h²/2` (each less its rounding bound) proves
+///   no root (Taylor's theorem with the Lagrange remainder);
+/// * `|p'(m)| > |p''(m)| h + M_3 h²/2` proves `p` monotone, so the signs of
+///   `p` at the ends give the count, 0 or 1;
+/// * otherwise the interval is halved.
+///
+/// `None` if an end value is at rounding level or a piece narrower than
+/// `1e-10` is still undecided (a root of multiplicity two or more, or a
+/// root at a grid point: random coefficients give neither).
+fn certified_count(p: &TrigPoly, lo: f64, hi: f64, bounds: &[f64; 4], depth: u32) -> Option<usize> {
+    let [eta, m2, m3, eta1] = *bounds;
+    let (m, h) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+    let (v, d1) = p.eval_with_derivative(m);
+    if v.abs() - eta > (d1.abs() + eta1) * h + 0.5 * m2 * h * h {
+        return Some(0);
+    }
+    let d2 = p.eval_with_two_derivatives(m).2;
+    if d1.abs() - eta1 > (d2.abs() + eta1 * 64.0) * h + 0.5 * m3 * h * h {
+        let (a, b) = (p.eval(lo), p.eval(hi));
+        if a.abs() <= eta || b.abs() <= eta {
+            return None;
+        }
+        return Some(usize::from(a.signum() != b.signum()));
+    }
+    if depth == 0 || h < 1e-10 {
+        return None;
+    }
+    let left = certified_count(p, lo, m, bounds, depth - 1)?;
+    let right = certified_count(p, m, hi, bounds, depth - 1)?;
+    Some(left + right)
+}
+
 #[test]
 fn ten_thousand_random_polynomials_lose_no_root() {
     // Independent references: the companion-matrix eigenvalue finder
     // (`roots_by_eigenvalues`) for degrees up to 48, where it is affordable;
-    // above, the sign changes of p on a grid of 16 n cells: a cell whose end
-    // values are above rounding level with opposite signs holds an odd number
-    // of roots, one with equal signs an even number (random coefficients
-    // give no tangencies), so the roots found in each cell must have that
-    // parity: a missed or spurious root in any cell fails.
+    // above, an exact count on each cell of a grid of 8 n cells by
+    // `certified_count` (global derivative bounds): in every cell the finder
+    // must report exactly as many roots as the count proves, so a missed,
+    // spurious or doubled root anywhere fails.
     let total = if OPTIMISED { 10_000 } else { 400 };
     let mut state = 0x2545_F491_4F6C_DD1D_u64;
-    let mut compared = 0;
+    let (mut compared, mut counted_cells, mut roots_seen) = (0, 0usize, 0usize);
     for i in 0..total {
         let low = i % 5 == 0;
         let n = if low {
@@ -761,29 +804,32 @@ fn ten_thousand_random_polynomials_lose_no_root() {
             continue;
         }
         let eta = p.eval_error_bound();
-        let cells = 16 * n;
-        let grid: Vec<f64> = (0..=cells).map(|j| TAU * j as f64 / cells as f64).collect();
-        let values: Vec<f64> = grid.iter().map(|&t| p.eval(t)).collect();
+        // rounding levels of p' and p'' as computed: the same form as η
+        // with one and two more powers of k
+        let eta1 = 16.0 * f64::EPSILON * derivative_bound(&p, 2);
+        let bounds = [eta, derivative_bound(&p, 2), derivative_bound(&p, 3), eta1];
+        let cells = 8 * n;
         for j in 0..cells {
-            let (v0, v1) = (values[j], values[j + 1]);
-            if v0.abs() <= eta || v1.abs() <= eta {
-                continue;
-            }
-            let inside = found
-                .iter()
-                .filter(|&&t| t > grid[j] && t < grid[j + 1])
-                .count();
-            let odd = v0.signum() != v1.signum();
-            assert_eq!(
-                inside % 2 == 1,
-                odd,
-                "n = {n}: {inside} roots in cell [{}, {}] with values {v0:e}, {v1:e}",
-                grid[j],
-                grid[j + 1]
+            let (lo, hi) = (
+                TAU * j as f64 / cells as f64,
+                TAU * (j + 1) as f64 / cells as f64,
             );
+            let count = certified_count(&p, lo, hi, &bounds, 40)
+                .unwrap_or_else(|| panic!("n = {n}: cell [{lo}, {hi}] not decided"));
+            let inside = found.iter().filter(|&&t| t >= lo && t < hi).count();
+            assert_eq!(
+                inside, count,
+                "n = {n}: the finder has {inside} roots in [{lo}, {hi}], the count {count}"
+            );
+            counted_cells += 1;
+            roots_seen += inside;
         }
     }
     assert!(compared >= total / 5);
+    if OPTIMISED {
+        assert!(counted_cells > 1_000_000, "{counted_cells}");
+        assert!(roots_seen > 500_000, "{roots_seen}");
+    }
 }
 
 /// `LevelRoots` shares the models' sums between levels: its roots must be
