@@ -3,13 +3,20 @@
 //! 143 for SIGTERM).
 //!
 //! Contract:
-//! * [`install`] (called once by the binary; later calls do nothing) starts
-//!   a thread that receives the signals. Without it the signals keep their
-//!   default action and [`requested`] is always `None`.
-//! * Files named with [`register`] (temporary files of
+//! * [`install`] (called once by the binary; later calls do nothing) makes
+//!   either signal end the process at once with `128 + signal` while there
+//!   is nothing to clean up: no file has been registered and no
+//!   [`Deferral`] started yet. Without it the signals keep their default
+//!   action and [`requested`] is always `None`.
+//! * The first [`register`], [`create_registered`] or [`defer`] after
+//!   [`install`] starts a thread that receives the signals, and from then
+//!   on it handles them: files named with [`register`] (temporary files of
 //!   [`crate::output::write_atomically`], the lock of a running sweep) are
 //!   deleted when a signal ends the process, then the process exits with
-//!   `128 + signal`.
+//!   `128 + signal`. The thread's handler is in place before the immediate
+//!   exit is switched off, so no signal falls between the two. A command
+//!   that never writes a file (a `run` to standard output) starts no
+//!   thread.
 //! * While a [`Deferral`] from [`defer`] lives (a sweep), the first signal
 //!   only sets the flag read by [`requested`]: the sweep stops taking new
 //!   cases, writes the ones in flight and returns; a second signal ends the
@@ -23,7 +30,7 @@
 use std::collections::BTreeSet;
 use std::fs::File;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicI32, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicI32, AtomicUsize, Ordering};
 use std::sync::{Mutex, MutexGuard, OnceLock};
 
 /// The first signal received, 0 for none.
@@ -32,8 +39,12 @@ static SIGNAL: AtomicI32 = AtomicI32::new(0);
 static DEFERRALS: AtomicUsize = AtomicUsize::new(0);
 /// Files to delete when a signal ends the process.
 static FILES: Mutex<BTreeSet<PathBuf>> = Mutex::new(BTreeSet::new());
-/// Set once the signal thread runs.
+/// Set once the handlers are installed.
 static INSTALLED: OnceLock<()> = OnceLock::new();
+/// Set once the signal thread runs.
+static WATCHING: OnceLock<()> = OnceLock::new();
+/// While true, a signal ends the process at once (nothing to clean up).
+static IMMEDIATE: AtomicBool = AtomicBool::new(true);
 
 fn files() -> MutexGuard<'static, BTreeSet<PathBuf>> {
     // A panic while the set was held leaves it consistent (inserts and
@@ -47,26 +58,47 @@ pub(crate) fn install() -> std::io::Result<()> {
     if INSTALLED.get().is_some() {
         return Ok(());
     }
-    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM])?;
+    for signal in [SIGINT, SIGTERM] {
+        signal_hook::flag::register_conditional_shutdown(signal, 128 + signal, &IMMEDIATE)?;
+    }
     INSTALLED.get_or_init(|| ());
-    std::thread::spawn(move || {
-        for signal in signals.forever() {
-            let first = SIGNAL
-                .compare_exchange(0, signal, Ordering::SeqCst, Ordering::SeqCst)
-                .is_ok();
-            if first && DEFERRALS.load(Ordering::SeqCst) > 0 {
-                continue;
-            }
-            let registered = files();
-            for path in registered.iter() {
-                let _ = std::fs::remove_file(path);
-            }
-            // Exits with the lock held: no registered file appears after
-            // the clean-up.
-            std::process::exit(128 + SIGNAL.load(Ordering::SeqCst));
-        }
-    });
     Ok(())
+}
+
+/// Hands the signals to the clean-up thread, started on the first call
+/// after [`install`] (module docs). If the thread cannot be set up, the
+/// immediate exit stays: an interrupted command may then leave a
+/// temporary file, which is not worth refusing to run.
+fn watch() {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    if INSTALLED.get().is_none() {
+        return;
+    }
+    WATCHING.get_or_init(|| {
+        let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM]) else {
+            return;
+        };
+        std::thread::spawn(move || {
+            for signal in signals.forever() {
+                let first = SIGNAL
+                    .compare_exchange(0, signal, Ordering::SeqCst, Ordering::SeqCst)
+                    .is_ok();
+                if first && DEFERRALS.load(Ordering::SeqCst) > 0 {
+                    continue;
+                }
+                let registered = files();
+                for path in registered.iter() {
+                    let _ = std::fs::remove_file(path);
+                }
+                // Exits with the lock held: no registered file appears after
+                // the clean-up.
+                std::process::exit(128 + SIGNAL.load(Ordering::SeqCst));
+            }
+        });
+        // The thread's handler is registered (Signals::new): from here on
+        // it decides.
+        IMMEDIATE.store(false, Ordering::SeqCst);
+    });
 }
 
 /// The signal that asked the program to stop (`SIGINT` = 2, `SIGTERM` =
@@ -90,6 +122,7 @@ pub(crate) struct Deferral(());
 
 /// Starts a [`Deferral`].
 pub(crate) fn defer() -> Deferral {
+    watch();
     DEFERRALS.fetch_add(1, Ordering::SeqCst);
     Deferral(())
 }
@@ -102,12 +135,14 @@ impl Drop for Deferral {
 
 /// Marks `path` for deletion if a signal ends the process.
 pub(crate) fn register(path: &Path) {
+    watch();
     files().insert(path.to_owned());
 }
 
 /// Creates (truncating) `path` and marks it for deletion if a signal ends
 /// the process, as one step with respect to the clean-up.
 pub(crate) fn create_registered(path: &Path) -> std::io::Result<File> {
+    watch();
     let mut registered = files();
     let file = File::create(path)?;
     registered.insert(path.to_owned());
