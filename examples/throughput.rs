@@ -110,7 +110,7 @@ fn main() {
     }
     println!("default scene (n = 2, sqrt(kappa) = 6, sigma), {runs} runs:");
     println!(
-        "  full run incl. signal set-up: median {:.0} us; simulation alone: median {:.0} us; {events} events",
+        "  run() timed outside: median {:.0} us; its own wall_time (set-up and simulation): median {:.0} us; {events} events",
         median(walls),
         median(internal)
     );
