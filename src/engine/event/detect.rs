@@ -368,6 +368,70 @@ mod tests {
     use crate::motor::{Motor, MotorParams};
     use crate::signal::{Signal, SignalSpec};
 
+    /// Every event of a run, as text (phase bits included).
+    #[derive(Default)]
+    struct Events(Vec<String>);
+
+    impl crate::engine::Observer for Events {
+        fn event(&mut self, event: &crate::engine::Event) {
+            self.0.push(format!("{event:?}"));
+        }
+    }
+
+    /// What two engines of one scene did side by side.
+    struct Twins {
+        /// Events of the first and the second engine.
+        events: [Vec<String>; 2],
+        /// Signal evaluations of the first and the second engine.
+        evaluations: [u64; 2],
+        /// Whether the first engine found its band pieces.
+        band_found: bool,
+    }
+
+    /// The engine of `spec` under the load `g_t` and a copy of it changed
+    /// by `alter`, each run `periods` periods from rest: every period end
+    /// of the two must be the same, to the bit.
+    fn side_by_side(
+        spec: &SignalSpec,
+        g_t: f64,
+        periods: u64,
+        alter: impl FnOnce(&mut EventEngine),
+    ) -> Twins {
+        let params = MotorParams {
+            extra_acceleration: g_t,
+            ..MotorParams::default()
+        };
+        let motor = Motor::new(params).expect("motor");
+        let signal = Signal::build(spec, &motor).expect("signal");
+        let first = EventEngine::new(&signal, &motor, EventOptions::default());
+        let mut second = first.clone();
+        alter(&mut second);
+        let mut engines = [first, second];
+        let mut logs = [Events::default(), Events::default()];
+        let mut starts = [PeriodStart {
+            velocity: 0.0,
+            mode: None,
+        }; 2];
+        for p in 1..=periods {
+            let mut ends = Vec::new();
+            for ((engine, log), start) in engines.iter_mut().zip(&mut logs).zip(&mut starts) {
+                let end = engine.run_period(p, *start, log).expect("runs");
+                *start = PeriodStart {
+                    velocity: end.velocity,
+                    mode: Some(end.mode),
+                };
+                ends.push(format!("{end:?}"));
+            }
+            assert_eq!(ends[0], ends[1], "{spec:?}, g_t = {g_t}, period {p}");
+        }
+        let [a, b] = logs;
+        Twins {
+            events: [a.0, b.0],
+            evaluations: engines.each_ref().map(|e| e.counters().evaluations),
+            band_found: engines[0].band.get().is_some(),
+        }
+    }
+
     /// The pieces passed without evaluation change nothing (module doc):
     /// every period end of a start-up from rest is the same, to the bit, as
     /// with an engine that evaluates the gap at every shrinking piece.
@@ -382,49 +446,16 @@ mod tests {
         ];
         let mut passed_any = false;
         for (spec, g_t) in cases {
-            let params = MotorParams {
-                extra_acceleration: g_t,
-                ..MotorParams::default()
-            };
-            let motor = Motor::new(params).expect("motor");
-            let signal = Signal::build(&spec, &motor).expect("signal");
-            let mut fast = EventEngine::new(&signal, &motor, EventOptions::default());
-            let mut full = fast.clone();
-            for slip in [&mut full.slip_forward, &mut full.slip_backward] {
-                slip.drops.iter_mut().for_each(|d| *d = f64::INFINITY);
-            }
-            let rest = PeriodStart {
-                velocity: 0.0,
-                mode: None,
-            };
-            let (mut a, mut b) = (rest, rest);
-            for p in 1..=40 {
-                let ea = fast.run_period(p, a, &mut ()).expect("runs");
-                let eb = full.run_period(p, b, &mut ()).expect("runs");
-                assert_eq!(format!("{ea:?}"), format!("{eb:?}"), "{spec:?}, period {p}");
-                a = PeriodStart {
-                    velocity: ea.velocity,
-                    mode: Some(ea.mode),
-                };
-                b = PeriodStart {
-                    velocity: eb.velocity,
-                    mode: Some(eb.mode),
-                };
-            }
-            assert!(fast.counters().evaluations <= full.counters().evaluations);
-            passed_any |= fast.counters().evaluations < full.counters().evaluations;
+            let twins = side_by_side(&spec, g_t, 40, |full| {
+                for slip in [&mut full.slip_forward, &mut full.slip_backward] {
+                    slip.drops.iter_mut().for_each(|d| *d = f64::INFINITY);
+                }
+            });
+            let [fast, full] = twins.evaluations;
+            assert!(fast <= full);
+            passed_any |= fast < full;
         }
         assert!(passed_any, "no piece was passed: the test shows nothing");
-    }
-
-    /// Every event of a run, as text (phase bits included).
-    #[derive(Default)]
-    struct Events(Vec<String>);
-
-    impl crate::engine::Observer for Events {
-        fn event(&mut self, event: &crate::engine::Event) {
-            self.0.push(format!("{event:?}"));
-        }
     }
 
     /// The band decided from `a_R` at a phase (module docs of the engine,
@@ -449,40 +480,17 @@ mod tests {
         ];
         let (mut never, mut found) = (0, 0);
         for (spec, g_t) in cases {
-            let params = MotorParams {
-                extra_acceleration: g_t,
-                ..MotorParams::default()
-            };
-            let motor = Motor::new(params).expect("motor");
-            let signal = Signal::build(&spec, &motor).expect("signal");
-            let mut lazy = EventEngine::new(&signal, &motor, EventOptions::default());
-            let mut eager = lazy.clone();
-            assert!(!eager.band().is_empty());
-            let rest = PeriodStart {
-                velocity: 0.0,
-                mode: None,
-            };
-            let (mut a, mut b) = (rest, rest);
-            let (mut ea_log, mut eb_log) = (Events::default(), Events::default());
-            let mut reversals = 0;
-            for p in 1..=60 {
-                let ea = lazy.run_period(p, a, &mut ea_log).expect("runs");
-                let eb = eager.run_period(p, b, &mut eb_log).expect("runs");
-                assert_eq!(format!("{ea:?}"), format!("{eb:?}"), "{spec:?}, period {p}");
-                a = PeriodStart {
-                    velocity: ea.velocity,
-                    mode: Some(ea.mode),
-                };
-                b = PeriodStart {
-                    velocity: eb.velocity,
-                    mode: Some(eb.mode),
-                };
-                reversals = lazy.counters().events.total();
-            }
-            assert_eq!(ea_log.0, eb_log.0, "{spec:?}");
-            assert!(reversals > 0, "{spec:?}: no event, the case shows nothing");
-            let sticks = ea_log.0.iter().any(|e| e.contains("Stick"));
-            match (lazy.band.get().is_some(), sticks) {
+            let twins = side_by_side(&spec, g_t, 60, |eager| {
+                assert!(!eager.band().is_empty());
+            });
+            let [lazy, eager] = &twins.events;
+            assert_eq!(lazy, eager, "{spec:?}");
+            assert!(
+                !lazy.is_empty(),
+                "{spec:?}: no event, the case shows nothing"
+            );
+            let sticks = lazy.iter().any(|e| e.contains("Stick"));
+            match (twins.band_found, sticks) {
                 (false, false) => never += 1,
                 (true, true) => found += 1,
                 (true, false) => {}
