@@ -58,11 +58,19 @@ pub(crate) fn install() -> std::io::Result<()> {
     if INSTALLED.get().is_some() {
         return Ok(());
     }
+    let mut result = Ok(());
     for signal in [SIGINT, SIGTERM] {
-        signal_hook::flag::register_conditional_shutdown(signal, 128 + signal, &IMMEDIATE)?;
+        match signal_hook::flag::register_conditional_shutdown(signal, 128 + signal, &IMMEDIATE) {
+            // One handler in place is enough for `watch` to matter: it
+            // switches the immediate exit off once there is a file to
+            // delete.
+            Ok(_) => {
+                INSTALLED.get_or_init(|| ());
+            }
+            Err(e) => result = Err(e),
+        }
     }
-    INSTALLED.get_or_init(|| ());
-    Ok(())
+    result
 }
 
 /// Hands the signals to the clean-up thread, started on the first call
@@ -78,7 +86,7 @@ fn watch() {
         let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM]) else {
             return;
         };
-        std::thread::spawn(move || {
+        let spawned = std::thread::Builder::new().spawn(move || {
             for signal in signals.forever() {
                 let first = SIGNAL
                     .compare_exchange(0, signal, Ordering::SeqCst, Ordering::SeqCst)
@@ -97,7 +105,9 @@ fn watch() {
         });
         // The thread's handler is registered (Signals::new): from here on
         // it decides.
-        IMMEDIATE.store(false, Ordering::SeqCst);
+        if spawned.is_ok() {
+            IMMEDIATE.store(false, Ordering::SeqCst);
+        }
     });
 }
 

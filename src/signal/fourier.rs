@@ -356,6 +356,13 @@ impl FourierSignal {
     /// close roots and tangencies have `|a_R - level|` at that level
     /// between them. Four times that residual plus the evaluation's own
     /// rounding ([`FourierSignal::acceleration_rounding`]) is the margin.
+    /// The piece's sign itself is taken where `a_R - level` lies beyond the
+    /// margin (the midpoint, or the farthest of seven sample points), so
+    /// it is the true sign on the piece; only a piece on which `a_R` stays
+    /// within the margin of the level at all eight points keeps a sign
+    /// decided by rounding, and there an evaluation beyond the margin
+    /// elsewhere on it could disagree. The argument rests, as the root
+    /// finder's proof does, on `η` bounding the error of a computed `p`.
     pub(crate) fn partition_margin(&self, level: f64) -> f64 {
         let (mut sum, mut slope) = (level.abs(), 0.0);
         for (i, (a, b)) in self.acc.iter().enumerate() {

@@ -232,13 +232,14 @@ impl Partition {
     }
 
     /// Builds a partition from sorted roots in `[0, T)` and a sign oracle
-    /// evaluated at piece midpoints; `breaks` are extra boundaries (jumps).
+    /// asked for each piece `(start, end)`; `breaks` are extra boundaries
+    /// (jumps).
     fn from_roots(
         level: f64,
         period: f64,
         roots: &[f64],
         breaks: &[f64],
-        mut sign_at: impl FnMut(f64) -> Sign,
+        mut sign_of: impl FnMut(f64, f64) -> Sign,
     ) -> Self {
         let mut knots: Vec<f64> = Vec::with_capacity(roots.len() + breaks.len() + 2);
         knots.push(0.0);
@@ -250,7 +251,7 @@ impl Partition {
         let mut pieces: Vec<Piece> = Vec::with_capacity(knots.len());
         for w in knots.windows(2) {
             let (start, end) = (w[0], w[1]);
-            let sign = sign_at(0.5 * (start + end));
+            let sign = sign_of(start, end);
             let is_break = breaks.contains(&start);
             match pieces.last_mut() {
                 Some(last) if last.sign == sign && !is_break => last.end = end,
@@ -526,20 +527,38 @@ impl Signal {
 
     /// Where `a_R(tau) - level` changes sign within a period. Root finding on
     /// the analytic signal, never sampling; the sign of each piece is taken
-    /// at its midpoint.
+    /// at its midpoint. For a series, where `a_R - level` there lies within
+    /// the rounding margin of [`Signal::partition_margin`] (the midpoint of
+    /// a piece on which `a_R` comes close to the level without crossing
+    /// it), it is taken where `abs(a_R - level)` is largest among the seven
+    /// points `start + k (end - start) / 8`, if that is beyond the margin.
     pub fn partition(&self, level: f64) -> Partition {
         let period = self.period();
         match self {
             Signal::Ideal(s) => {
                 let breaks: Vec<f64> = s.piece_boundaries();
-                Partition::from_roots(level, period, &[], &breaks, |tau| {
-                    s.state(tau).a.total_cmp(&level)
+                Partition::from_roots(level, period, &[], &breaks, |start, end| {
+                    s.state(0.5 * (start + end)).a.total_cmp(&level)
                 })
             }
             Signal::Fourier(s) => {
                 let roots = s.acceleration_roots(level);
-                Partition::from_roots(level, period, &roots, &[], |tau| {
-                    s.acceleration(tau).total_cmp(&level)
+                let margin = s.partition_margin(level);
+                Partition::from_roots(level, period, &roots, &[], |start, end| {
+                    let a = s.acceleration(0.5 * (start + end));
+                    if (a - level).abs() > margin {
+                        return a.total_cmp(&level);
+                    }
+                    let off = |x: f64| (x - level).abs();
+                    let farthest = (1..8)
+                        .map(|k| s.acceleration(start + (end - start) * k as f64 / 8.0))
+                        .max_by(|x, y| off(*x).total_cmp(&off(*y)))
+                        .unwrap_or(a);
+                    if off(farthest) > margin {
+                        farthest.total_cmp(&level)
+                    } else {
+                        a.total_cmp(&level)
+                    }
                 })
             }
         }

@@ -118,7 +118,8 @@ impl Piecewise {
             r,
             slices,
             v_rounding: 4.0 * ORDER as f64 * f64::EPSILON * v_rounding,
-            a_rounding: 4.0 * ORDER as f64 * f64::EPSILON * a_rounding,
+            a_rounding: 4.0 * ORDER as f64 * f64::EPSILON * a_rounding
+                + coefficient_rounding(omega, r, cos, sin),
         }
     }
 
@@ -129,7 +130,9 @@ impl Piecewise {
         self.v_rounding
     }
 
-    /// The same bound for a computed `a_R`, `4 J ε max_i Σ_j |a_ij|`.
+    /// A bound on the rounding of a computed `a_R`: the Horner pass,
+    /// `4 J ε max_i Σ_j |a_ij|`, and the rounding of the slices'
+    /// coefficients themselves (`coefficient_rounding`).
     pub(crate) fn acceleration_rounding(&self) -> f64 {
         self.a_rounding
     }
@@ -191,6 +194,29 @@ impl Piecewise {
         let (slice, s) = self.locate(tau);
         horner(&slice.jerk, s)
     }
+}
+
+/// A bound on the error of `a_R` on a slice from the rounding of the
+/// slice's coefficients: the bound (R1)-(R3) of the root finder's models
+/// (`numerics::trig_roots`, step 1), `ε (5k + n + 3J + 6) (|A_k| + |B_k|)
+/// (k r)^j / j!` on the `k`-th term of `g_j`, carried through
+/// `a_j = j (j - 1) (w_0 / r)^2 g_j` and summed over `j` at `|s| <= 1`:
+/// `ε Σ_k (5k + n + 3J + 6) (k w_0)^2 (|A_k| + |B_k|) e^{k r}`.
+fn coefficient_rounding(omega: f64, r: f64, cos: &[f64], sin: &[f64]) -> f64 {
+    let n = cos.len() as f64;
+    let sum: f64 = cos
+        .iter()
+        .zip(sin)
+        .enumerate()
+        .map(|(i, (a, b))| {
+            let k = (i + 1) as f64;
+            (5.0 * k + n + 3.0 * ORDER as f64 + 6.0)
+                * (k * omega).powi(2)
+                * (a.abs() + b.abs())
+                * (k * r).exp()
+        })
+        .sum();
+    f64::EPSILON * sum
 }
 
 /// `Σ c_j s^j` by Horner's rule.
