@@ -528,7 +528,7 @@ impl Signal {
     /// Where `a_R(tau) - level` changes sign within a period. Root finding on
     /// the analytic signal, never sampling; the sign of each piece is taken
     /// at its midpoint. For a series, where `a_R - level` there lies within
-    /// the rounding margin of [`Signal::partition_margin`] (the midpoint of
+    /// the rounding margin of `Signal::partition_margin` (the midpoint of
     /// a piece on which `a_R` comes close to the level without crossing
     /// it), it is taken where `abs(a_R - level)` is largest among the seven
     /// points `start + k (end - start) / 8`, if that is beyond the margin.
