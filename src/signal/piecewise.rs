@@ -69,7 +69,8 @@ pub(crate) struct Piecewise {
     slices: Vec<Slice>,
     /// Bound on the Horner rounding of a computed `v_R` (m/s).
     v_rounding: f64,
-    /// Bound on the Horner rounding of a computed `a_R` (m/s^2).
+    /// Bound on the rounding of a computed `a_R`: Horner pass and slice
+    /// coefficients (m/s^2).
     a_rounding: f64,
 }
 

@@ -277,25 +277,26 @@ impl<'a> Finder<'a> {
                     &own
                 }
             };
-            self.walk(top, &g, m, &mut out, &mut unresolved);
+            self.walk(top, &g, mass, m, &mut out, &mut unresolved);
         }
         self.resolve_clusters(unresolved, &mut out);
         (out, bounds, kept)
     }
 
     /// The pieces of the top-level interval centred at `m` with model `g`
-    /// (this level's `g_0`), from its tree `top`: test (E) with this level's
+    /// (this level's `g_0`) of coefficient mass `mass = Σ_j |g_j|`, from its tree `top`: test (E) with this level's
     /// `e_0`, then the piece's (M)/(C) class, halves made when first needed.
     fn walk(
         &self,
         top: &Node,
         g: &Coeffs,
+        mass: f64,
         m: f64,
         out: &mut Vec<Candidate>,
         unresolved: &mut Vec<(f64, f64)>,
     ) {
         // rounding of the shift (module docs, (R4)): Σ_i i^l err_i ≤ γ ρ^l G_l
-        let t0 = GAMMA * g.iter().map(|x| x.abs()).sum::<f64>();
+        let t0 = GAMMA * mass;
         let mut stack = vec![top];
         while let Some(node) = stack.pop() {
             let e0 = match node.x {
