@@ -110,6 +110,7 @@ pub use scene::{
 pub use signal::description::SignalDescription;
 pub use signal::{FourierSignal, IdealShape, MAX_HARMONICS, RodState, Signal, SignalSpec};
 pub use simulation::{
-    ErrorEstimate, Outcome, Regime, RunReport, SignalCache, SteadyStateCheck, Unsettled, build,
-    run, run_with, sensitivities, simulate, simulate_with, simulate_with_signal,
+    CertificateKind, ErrorEstimate, Outcome, Regime, RunReport, SignalCache,
+    SteadyStateCertificate, SteadyStateCheck, Unsettled, build, run, run_with, sensitivities,
+    simulate, simulate_with, simulate_with_signal,
 };

@@ -18,7 +18,7 @@ use crate::provenance;
 use crate::scene::Scene;
 use crate::scene::SceneFile;
 use crate::sensitivity::{Derivative, Sensitivities};
-use crate::simulation::{Outcome, RunReport, Unsettled};
+use crate::simulation::{CertificateKind, Outcome, RunReport, Unsettled};
 use serde_json::{Map, Value, json};
 use std::fmt::Write as _;
 use std::time::Duration;
@@ -145,6 +145,8 @@ fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled, verify: bool) {
     m.insert("f0".into(), number(1.0 / u.period));
     m.insert("f_max".into(), option_number(u.f_max));
     m.insert("periods_simulated".into(), json!(u.periods_simulated));
+    m.insert("steady_state_certificate".into(), Value::Null);
+    m.insert("other_fixed_point_distance".into(), Value::Null);
     m.insert("events".into(), Value::Null);
     m.insert("events_per_steady_period".into(), Value::Null);
     if verify {
@@ -161,6 +163,7 @@ fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled, verify: bool) {
             "root_iterations": u.work.root_iterations,
             "fixed_point_iterations": Value::Null,
             "map_evaluations": Value::Null,
+            "certificate_evaluations": Value::Null,
         }),
     );
 }
@@ -211,6 +214,14 @@ fn steady_json(m: &mut Map<String, Value>, r: &RunReport) {
             }),
         );
     }
+    m.insert(
+        "steady_state_certificate".into(),
+        json!(r.certificate.kind.name()),
+    );
+    m.insert(
+        "other_fixed_point_distance".into(),
+        option_number(r.certificate.other_fixed_point),
+    );
     m.insert("period".into(), number(r.period));
     m.insert("f0".into(), number(1.0 / r.period));
     m.insert("f_max".into(), option_number(r.f_max));
@@ -233,6 +244,7 @@ fn steady_json(m: &mut Map<String, Value>, r: &RunReport) {
             "root_iterations": r.work.root_iterations,
             "fixed_point_iterations": r.steady.iterations,
             "map_evaluations": r.map_evaluations,
+            "certificate_evaluations": r.certificate.evaluations,
         }),
     );
     if let Some(log) = &r.event_log {
@@ -453,6 +465,25 @@ fn steady_text(r: &RunReport) -> String {
                 );
             }
         }
+    }
+    let c = &r.certificate;
+    let _ = writeln!(
+        out,
+        "limit from rest: {} ({} map evaluation{})",
+        match c.kind {
+            CertificateKind::Covering =>
+                "certified by a covering (pieces proven free of other fixed points)",
+            CertificateKind::Orbit => "the start-up from rest simulated to its limit",
+        },
+        c.evaluations,
+        if c.evaluations == 1 { "" } else { "s" }
+    );
+    if let Some(d) = c.other_fixed_point {
+        let _ = writeln!(
+            out,
+            "  another fixed point of the period map lies {d:.1e} m/s away (in the boundary \
+             velocity): a small change can switch the steady state"
+        );
     }
     let ev = r.events();
     let _ = writeln!(

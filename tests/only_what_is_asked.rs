@@ -1,4 +1,4 @@
-//! Issue 12, items 2 and 3: a run computes only what its scene asks for.
+//! A run computes only what its scene asks for.
 //! A `v_inf`-only scene takes the fixed point of the period map from rest
 //! without simulating the start-up (module docs of `simulation`), and
 //! reports the same `v_inf`, bit for bit, as the run that simulates it; a
@@ -13,8 +13,8 @@ use common::mock::ThreeFixedPoints;
 use std::sync::Arc;
 use stickslip::Indicator;
 use stickslip::SignalSpec;
+use stickslip::{CertificateKind, Outcome, RunReport, SignalCache};
 use stickslip::{Motor, Scene, Signal};
-use stickslip::{Outcome, RunReport, SignalCache};
 
 fn only_v_inf(scene: &Scene) -> Scene {
     let mut s = scene.clone();
@@ -100,9 +100,10 @@ fn verify_steady_state_still_simulates_the_start_up() {
     assert!(check.periods > startup, "{} periods", check.periods);
 }
 
-/// The march between rest and the searched fixed point (2.5) meets a point
-/// of `(1, 2)` that the map moves back: a nearer fixed point exists, and
-/// the `v_inf`-only run takes the orbit from rest, which stops at 1.
+/// The covering between rest and the searched fixed point (2.5) meets a
+/// point of `(1, 2)` that the map moves back: a nearer fixed point exists
+/// in the bracket it gives, and the `v_inf`-only run finds and certifies
+/// it there (1, the limit of the orbit from rest), without the start-up.
 #[test]
 fn v_inf_only_run_of_a_three_fixed_point_map_takes_the_nearest() {
     let scene = Scene {
@@ -124,13 +125,22 @@ fn v_inf_only_run_of_a_three_fixed_point_map_takes_the_nearest() {
         "{}",
         r.indicators.v_inf / a
     );
-    assert!(r.transient.is_some_and(|t| t.periods() > 0));
+    // The covering proved the gap below 1 free and found 1 without the
+    // start-up; the search had reached 2.5, 1.5 away (the mock's closed
+    // form).
+    assert!(r.transient.is_none());
+    assert_eq!(r.certificate.kind, CertificateKind::Covering);
+    let other = r
+        .certificate
+        .other_fixed_point
+        .expect("2.5 was found first");
+    assert!((other / a - 1.5).abs() < 1e-9, "{}", other / a);
 }
 
 /// A further pair of fixed points close to the one the search from rest
 /// finds (1.004 and 1.005, the limit of the motion from rest being 1):
-/// the march's geometric points towards the found fixed point see the
-/// pair, with and without the start-up, and the orbit from rest decides.
+/// the covering sees the pair, with and without the start-up, and reports
+/// the limit with the fixed point the search reached as the other one.
 #[test]
 fn a_pair_of_fixed_points_close_to_the_found_one_is_seen() {
     for indicators in [vec![Indicator::VInf], Indicator::ALL[..6].to_vec()] {
@@ -154,6 +164,14 @@ fn a_pair_of_fixed_points_close_to_the_found_one_is_seen() {
             "{indicators:?}: {}",
             r.indicators.v_inf / a
         );
+        // The search reached 1.005, 0.005 from the limit (the mock's closed
+        // form), and the covering found the pair between.
+        assert_eq!(r.certificate.kind, CertificateKind::Covering);
+        let other = r
+            .certificate
+            .other_fixed_point
+            .expect("1.005 was found first");
+        assert!((other / a - 0.005).abs() < 1e-9, "{}", other / a);
     }
 }
 

@@ -130,6 +130,9 @@ pub(crate) fn estimate_errors(
         // on the data there, so no bound holds.
         Some(u) if !u.is_finite() => None,
         Some(_) => match engine_bound(signal, steady) {
+            // A certified fixed point: the limit from rest lies within the
+            // covering's reach of it.
+            Some(b) if !from_orbit => Some(super::certificate::CERTIFIED_REACH * b),
             Some(b) => Some(b),
             None if from_orbit => transient.filter(|t| t.converged).map(from_transient),
             None => None,

@@ -5,10 +5,11 @@
 //! moves them. A zero of `g(v) = P(v) - v` is found by safeguarded Newton in
 //! a bracket `g(lo) > 0 >= g(hi)` grown from the starting guess in that
 //! direction, with `P'(v)` carried exactly through the period by the
-//! engine. `g` need not be monotone (a stuck slider can be outrun by one
-//! that slides), so a map with several fixed points may yield one the
-//! start-up does not reach: the caller checks the fixed point against the
-//! start-up, or without it by [`fixed_point_is_nearest`].
+//! engine. `g` need not be monotone (a slider that sticks can outrun one
+//! that slides on), so a map with several fixed points may yield one the
+//! start-up does not reach: the caller certifies the fixed point
+//! (`super::certificate`), and where the covering finds a nearer one,
+//! [`fixed_point_between`] finds it in the bracket the covering gives.
 
 use crate::engine::{PeriodEngine, PeriodStart};
 use crate::error::SimulationError;
@@ -24,67 +25,6 @@ fn period_map<E: PeriodEngine>(engine: &mut E, v: f64) -> Result<(f64, f64), Sim
         &mut (),
     )?;
     Ok((end.velocity, end.map_derivative))
-}
-
-/// True if the period map moves `v` towards `target` (or `v` is it): a
-/// necessary condition for iterates through `v` to converge to `target`
-/// (`P` is monotone, so a fixed point between `v` and `target` would stop
-/// them, and `P(v)` on the far side of `v` reveals one).
-pub fn moves_towards<E: PeriodEngine>(
-    engine: &mut E,
-    v: f64,
-    target: f64,
-) -> Result<bool, SimulationError> {
-    if v == target {
-        return Ok(true);
-    }
-    let (p, _) = period_map(engine, v)?;
-    Ok(if v < target { p > v } else { p < v })
-}
-
-/// Points of the march of [`fixed_point_is_nearest`] between rest and the
-/// fixed point.
-pub const NEAREST_MARCH_POINTS: u32 = 16;
-
-/// The check of a fixed point `v_star` found by the search from rest that
-/// replaces the start-up, or extends it past the orbit's last point `from`
-/// (docs/model.md section 10; the argument is in the module docs of
-/// `crate::simulation`): the map is evaluated, in order from `from`
-/// towards `v_star`, at the points `i v_star / 16` (`i = 1..15`) beyond
-/// `from`, then at `v_star (1 - 2^-j)` for `j = 5, 6, ...`, each only
-/// while it is farther than `bound` from `v_star`. The geometric points
-/// see a further pair of fixed points near `v_star` unless the pair is
-/// narrower than about half its distance to `v_star`. `Ok(false)` as soon
-/// as one point is not moved towards `v_star` (`P(x) - x` zero or of the
-/// other sign): then a fixed point lies between rest and that point,
-/// nearer than `v_star`. `Ok(true)` when every point is moved towards
-/// `v_star`, with the number of map evaluations.
-pub fn fixed_point_is_nearest<E: PeriodEngine>(
-    engine: &mut E,
-    v_star: f64,
-    bound: f64,
-    from: f64,
-) -> Result<(bool, u32), SimulationError> {
-    let uniform = (1..NEAREST_MARCH_POINTS)
-        .map(|i| v_star * (f64::from(i) / f64::from(NEAREST_MARCH_POINTS)));
-    // 1 - 2^-j for j >= 5 continues the uniform points past 15/16.
-    let geometric = (5..60).map(|j| v_star * (1.0 - (0.5f64).powi(j)));
-    let mut evaluations = 0;
-    for x in uniform.chain(geometric) {
-        if (v_star - x).abs() <= bound {
-            break;
-        }
-        // Points the orbit from rest has passed are covered by it.
-        if (x - from) * v_star.signum() <= 0.0 {
-            continue;
-        }
-        let (p, _) = period_map(engine, x)?;
-        evaluations += 1;
-        if (p - x) * v_star.signum() <= 0.0 {
-            return Ok((false, evaluations));
-        }
-    }
-    Ok((true, evaluations))
 }
 
 /// Iteration limit of the fixed-point search.
@@ -124,6 +64,35 @@ pub fn fixed_point<E: PeriodEngine>(
             periods: engine.counters().periods,
         });
     }
+    bracketed(engine, (lo, hi), (guess, g0, d0), span)
+}
+
+/// The fixed point of the period map in `[lo, hi]`, where `P(lo) > lo`
+/// and `P(hi) <= hi` (beyond rounding): safeguarded Newton from the end
+/// `start` (either one), bisecting whenever Newton leaves the bracket.
+pub fn fixed_point_between<E: PeriodEngine>(
+    engine: &mut E,
+    lo: f64,
+    hi: f64,
+    start: f64,
+) -> Result<(f64, f64, u32, f64), SimulationError> {
+    let (lo_r, hi_r) = engine.signal().velocity_range();
+    let span = (hi_r - lo_r).max(f64::MIN_POSITIVE);
+    let (p, d) = period_map(engine, start)?;
+    if p == start {
+        return Ok((start, d, 0, 0.0));
+    }
+    bracketed(engine, (lo, hi), (start, p - start, d), span)
+}
+
+/// Safeguarded Newton on `g(v) = P(v) - v` in the bracket `[lo, hi]`
+/// (`g(lo) > 0 >= g(hi)`) from `v` with `g(v)`, `P'(v)`.
+fn bracketed<E: PeriodEngine>(
+    engine: &mut E,
+    (lo, hi): (f64, f64),
+    (guess, g0, d0): (f64, f64, f64),
+    span: f64,
+) -> Result<(f64, f64, u32, f64), SimulationError> {
     let (mut lo, mut hi) = (lo, hi);
     let tiny = 4.0 * f64::EPSILON * span;
     let (mut v, mut g, mut dp) = (guess, g0, d0);

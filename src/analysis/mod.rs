@@ -23,8 +23,9 @@
 //! direction, with `P'(v)` carried exactly through the period by the
 //! engine. `g` need not be monotone (a stuck slider can be outrun by one
 //! that slides), so a map with several fixed points may yield one the
-//! start-up does not reach: the caller checks the fixed point against the
-//! start-up, or without it by [`fixed_point_is_nearest`]
+//! start-up does not reach: the caller certifies it (`certificate`: a
+//! covering of the gap between rest and the fixed point by pieces proven
+//! free of fixed points) or finds the nearer one
 //! ([`crate::simulation::run_with`]). The transient from rest can
 //! be simulated until its own period-to-period changes have died out (with
 //! Aitken's extrapolation); the two steady states must agree.
@@ -35,10 +36,12 @@
 //!
 //! * `stats`: the per-period statistics observer;
 //! * [`transient`]: the start-up from rest;
-//! * [`fixed_point`]: the period map's fixed point and the check that it is
-//!   the one the start-up reaches;
+//! * [`fixed_point`]: the period map's fixed point;
+//! * `certificate`: the proof that a fixed point is the limit of the motion
+//!   from rest, or the bracket of a nearer one;
 //! * [`steady_state`]: the periodic orbit and its indicators.
 
+pub(crate) mod certificate;
 pub(crate) mod error_estimate;
 mod fixed_point;
 mod stats;
@@ -46,7 +49,7 @@ mod steady_state;
 mod transient;
 
 pub use error_estimate::ErrorEstimate;
-pub use fixed_point::{NEAREST_MARCH_POINTS, fixed_point, fixed_point_is_nearest, moves_towards};
+pub use fixed_point::{fixed_point, fixed_point_between};
 pub use stats::{PeriodStats, StatsObserver, StatsWanted};
 pub use steady_state::{SteadyIndicators, SteadyState, steady_state, steady_state_at};
 pub use transient::{AnalysisOptions, Transient, transient};

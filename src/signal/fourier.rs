@@ -309,6 +309,16 @@ impl FourierSignal {
         self.acc.iter().map(|(a, b)| a.hypot(*b)).sum()
     }
 
+    /// `sum_k k w_0 |(k w_0)^2 (A_k, B_k)|`, a bound on the jerk `|da_R/dt|`
+    /// (m/s^3).
+    pub(crate) fn jerk_bound(&self) -> f64 {
+        self.acc
+            .iter()
+            .enumerate()
+            .map(|(i, (a, b))| (i + 1) as f64 * self.omega * a.hypot(*b))
+            .sum()
+    }
+
     /// A bound on the rounding error of [`FourierSignal::velocity`] at any
     /// phase: `64 ε Σ_k √k |k w (A_k, B_k)|`, four times the rounding level
     /// of a trigonometric polynomial (`TrigPoly::eval_error_bound`, docs/model.md

@@ -588,6 +588,49 @@ impl Signal {
         }
     }
 
+    /// Bounds `(lo, hi)` on `a_R` over the phases `[p, q]` (`0 <= p <= q <=
+    /// T`), rounding included, given the computed `a_p = a_R(p)` and
+    /// `a_q = a_R(q)`: for a series `|a_R'| <= J` (the jerk bound) gives
+    /// `a_R <= (a_p + a_q) / 2 + J (q - p) / 2` and the mirror image, each
+    /// widened by the evaluation's rounding; the ideal signal's acceleration
+    /// is piecewise constant, and the bounds are the values of the pieces
+    /// that meet `[p, q]`.
+    pub(crate) fn acceleration_range(&self, p: f64, q: f64, a_p: f64, a_q: f64) -> (f64, f64) {
+        match self {
+            Signal::Ideal(s) => {
+                // a_r on [0, t_1), 0 on [t_1, T); t_1 = T for the continuous
+                // signal.
+                let mut values = [None, None];
+                if p < s.t1() {
+                    values[0] = Some(s.a_r());
+                }
+                if q >= s.t1() {
+                    values[1] = Some(0.0);
+                }
+                let lo = values
+                    .iter()
+                    .flatten()
+                    .copied()
+                    .fold(f64::INFINITY, f64::min);
+                let hi = values
+                    .iter()
+                    .flatten()
+                    .copied()
+                    .fold(f64::NEG_INFINITY, f64::max);
+                (lo, hi)
+            }
+            Signal::Fourier(s) => {
+                let r = s.acceleration_rounding();
+                let half = 0.5 * s.jerk_bound() * (q - p);
+                let mid = 0.5 * (a_p + a_q);
+                (
+                    (mid - half).min(a_p.min(a_q)) - r,
+                    (mid + half).max(a_p.max(a_q)) + r,
+                )
+            }
+        }
+    }
+
     /// The [`Envelope`] of `|a_R|`: for the ideal signal `|a_R|` over the
     /// whole period; for a series the bounds of the root finder's Taylor
     /// models on `~pi n / 2` slices (`FourierSignal::acceleration_slices`).

@@ -2,11 +2,14 @@
 //! [`crate::simulation`]): the fixed point, the start-up when an indicator
 //! needs it, the check that the two agree, and the error estimates.
 
-use super::{Outcome, RunReport, SteadyStateCheck, Unsettled};
+use super::{
+    CertificateKind, Outcome, RunReport, SteadyStateCertificate, SteadyStateCheck, Unsettled,
+};
+use crate::analysis::certificate::{Verdict, certify};
 use crate::analysis::error_estimate::{
     established_bound, estimate_errors, startup_error, v_inf_error,
 };
-use crate::analysis::{self, AnalysisOptions, StatsWanted, Transient};
+use crate::analysis::{self, AnalysisOptions, StatsWanted, SteadyState, Transient};
 use crate::engine::{Event, PeriodEngine};
 use crate::error::Error;
 use crate::indicator::Indicator;
@@ -65,12 +68,18 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         || wants(Indicator::StictionFraction)
         || scene.outputs.events;
     // Periods run from chosen velocities: the fixed-point searches, the
-    // march of the nearest-fixed-point check and the steady-state periods.
+    // covering of the certificate and the steady-state periods.
     let mut map_evaluations = 0;
+    let mut certificate = SteadyStateCertificate {
+        kind: CertificateKind::Orbit,
+        evaluations: 0,
+        other_fixed_point: None,
+    };
     // Fast path: the period map's fixed point from rest (the first period
     // from rest moves the slider exactly as the map does from v = 0), used
-    // only when established; then either the check that it is the nearest
-    // fixed point, or the start-up up to p_0.99 (on to convergence with
+    // only when established and certified as the limit of the motion from
+    // rest: from rest, or from the start-up's last point when the start-up
+    // is simulated up to p_0.99 (on to convergence with
     // verify_steady_state). See the module docs.
     let mut rest_fixed_point = None;
     let fast = if engine.steady_state_from_transient() {
@@ -85,14 +94,18 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         match established {
             Some((steady, bound)) if !needs_startup => {
                 rest_fixed_point = Some((steady.boundary_velocity, steady.v_inf));
-                let (nearest, marched) = analysis::fixed_point_is_nearest(
+                let before = engine.counters().periods;
+                let certified = certified_limit(
                     &mut engine,
-                    steady.boundary_velocity,
-                    bound,
+                    motor,
                     0.0,
+                    (steady, bound),
+                    wanted,
+                    &mut trajectory,
+                    &mut certificate,
                 )?;
-                map_evaluations += u64::from(marched);
-                nearest.then_some((steady, None))
+                map_evaluations += engine.counters().periods - before;
+                certified.map(|steady| (steady, None))
             }
             Some((steady, bound)) => {
                 rest_fixed_point = Some((steady.boundary_velocity, steady.v_inf));
@@ -111,30 +124,31 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                     && (transient.v_inf() - steady.v_inf).abs()
                         > bound + transient.v_inf_error.unwrap_or(0.0);
                 let passes = orbit_passes(&transient, seen, steady.boundary_velocity, bound);
-                // Between the orbit's last point and the fixed point, the
-                // march of the v_inf-only check looks for a nearer one.
+                // The orbit covers what lies behind its last point; the
+                // covering goes on from there.
                 let last = transient
                     .boundary_velocities
                     .get((seen as usize).saturating_sub(1))
                     .or(transient.boundary_velocities.last())
                     .copied()
                     .unwrap_or(0.0);
-                let nearest = if transient.run_away.is_some() || settled_elsewhere || passes {
-                    false
-                } else {
-                    let (nearest, marched) = analysis::fixed_point_is_nearest(
-                        &mut engine,
-                        steady.boundary_velocity,
-                        bound,
-                        last,
-                    )?;
-                    map_evaluations += u64::from(marched);
-                    nearest
-                };
-                if transient.run_away.is_some() || nearest {
+                if transient.run_away.is_some() {
                     Some((steady, Some(transient)))
-                } else {
+                } else if settled_elsewhere || passes {
                     None
+                } else {
+                    let before = engine.counters().periods;
+                    let certified = certified_limit(
+                        &mut engine,
+                        motor,
+                        last,
+                        (steady, bound),
+                        wanted,
+                        &mut trajectory,
+                        &mut certificate,
+                    )?;
+                    map_evaluations += engine.counters().periods - before;
+                    certified.map(|steady| (steady, Some(transient)))
                 }
             }
             None => None,
@@ -181,6 +195,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                 )?,
             };
             map_evaluations += engine.counters().periods - before;
+            certificate.kind = CertificateKind::Orbit;
             (steady, Some(transient))
         }
     };
@@ -270,6 +285,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         simulation_time,
         wall_time: setup_time + simulation_time,
         steady_state_check,
+        certificate,
         event_log_omitted,
         event_log,
         trajectory: trajectory.map(|t| t.segments),
@@ -319,5 +335,79 @@ fn unsettled<E: PeriodEngine>(
     match transient.run_away {
         Some(direction) => Outcome::RunAway { direction, state },
         None => Outcome::NotConverged(state),
+    }
+}
+
+/// Largest number of map evaluations a certificate may take before the
+/// orbit from rest decides.
+const CERTIFICATE_BUDGET: u32 = 256;
+
+/// The steady state reached from `from` (rest, or a point of the orbit from
+/// rest), certified: the covering of `crate::analysis::certificate` from
+/// `from` to the established fixed point `(steady, bound)`; where it finds
+/// a nearer fixed point, that one is found in the bracket it gives, and
+/// certified in turn. `None` when no certificate is found within
+/// [`CERTIFICATE_BUDGET`] map evaluations or a nearer fixed point is not
+/// established: then the orbit from rest decides. Records the cost and the
+/// other fixed points found in `certificate`.
+fn certified_limit<E: PeriodEngine>(
+    engine: &mut E,
+    motor: &Motor,
+    from: f64,
+    (steady, bound): (SteadyState, f64),
+    wanted: StatsWanted,
+    trajectory: &mut Option<Trajectory>,
+    certificate: &mut SteadyStateCertificate,
+) -> Result<Option<SteadyState>, Error> {
+    let (mut from, mut steady, mut bound) = (from, steady, bound);
+    let mut rejected: Vec<f64> = Vec::new();
+    let mut spent = 0;
+    loop {
+        let covering = certify(
+            engine,
+            motor,
+            from,
+            steady.boundary_velocity,
+            bound,
+            CERTIFICATE_BUDGET.saturating_sub(spent),
+        )?;
+        spent += covering.evaluations;
+        certificate.evaluations = u64::from(spent);
+        match covering.verdict {
+            Verdict::Certified => {
+                certificate.kind = CertificateKind::Covering;
+                let v = steady.boundary_velocity;
+                certificate.other_fixed_point = rejected
+                    .iter()
+                    .map(|w| (w - v).abs())
+                    .min_by(f64::total_cmp);
+                return Ok(Some(steady));
+            }
+            Verdict::Undecided => return Ok(None),
+            Verdict::Nearer { near, far } => {
+                if near == far || spent >= CERTIFICATE_BUDGET {
+                    return Ok(None);
+                }
+                rejected.push(steady.boundary_velocity);
+                let (lo, hi) = (near.min(far), near.max(far));
+                let before = engine.counters().periods;
+                let (v, d, iterations, correction) =
+                    analysis::fixed_point_between(engine, lo, hi, near)?;
+                // A fresh observation of the new steady period.
+                *trajectory = trajectory.as_ref().map(|_| Trajectory::default());
+                let next = analysis::steady_state_at(
+                    engine,
+                    v,
+                    (Some(d), iterations, correction),
+                    wanted,
+                    trajectory,
+                )?;
+                spent += (engine.counters().periods - before) as u32;
+                let Some(b) = established_bound(engine.signal(), &next) else {
+                    return Ok(None);
+                };
+                (from, steady, bound) = (near, next, b);
+            }
+        }
     }
 }

@@ -32,66 +32,48 @@
 //!    other fixed point lies between the orbit and it.
 //!
 //! The fast path searches `P(v) = v` from rest ([`analysis::fixed_point`])
-//! and uses the fixed point only when it is *established*: the map
-//! contracts there (`1 - P' > 0`) and the engine's bound on the fixed
+//! and uses the fixed point only when it is *established* (the map
+//! contracts there, `1 - P' > 0`, and the engine's bound on the fixed
 //! point, which contains the range where `P(v) - v` is indistinguishable
-//! from 0 within rounding, is at most `1e-3 max |v_R|` (see
-//! [`established_bound`]). A map that is neutral
-//! within rounding (`P(v) - v` indistinguishable from 0 over a range, as
-//! with `mu_dynamic = 0`, where every velocity of the slip range passes for
-//! a fixed point) or nearly neutral (`P'` within rounding of 1) is not
-//! established. The start-up from rest is then simulated up to `p_0.99`;
-//! if its orbit passes the fixed point (contradicting 2.) or settles
-//! elsewhere before `p_0.99`, the fixed point is rejected. When the fast
-//! path is rejected, the orbit from rest decides: the start-up is simulated
+//! from 0 within rounding, is at most `1e-3 max |v_R|`; see
+//! `established_bound`) and *certified*: the covering of
+//! `crate::analysis::certificate` proves, by the monotone step and the
+//! growth bound of the friction law, that no fixed point lies between the
+//! start of the covering and `v* - 2 bound`, so that by 3. `v*` is the limit
+//! within twice its bound. Where the covering meets a point the map does
+//! not move towards `v*`, a nearer fixed point lies in the bracket it gives
+//! (`P` maps it into itself); that one is found
+//! ([`analysis::fixed_point_between`]), established and certified in turn,
+//! and the first is reported as the other fixed point
+//! ([`SteadyStateCertificate`]). When the covering does not close within
+//! its budget of map evaluations (or a nearer fixed point is not
+//! established), the orbit from rest decides: the start-up is simulated
 //! until its limit is established ([`analysis::transient`]: an exact
-//! repetition or a remaining distance bounded by the measured contraction),
-//! and the steady state is taken there (a fixed point searched from the
-//! orbit's end is used only if it lies within that bound). Without an
-//! established limit within `run.max_periods` the result is
-//! [`Outcome::NotConverged`], with the bounds of 2.
+//! repetition or a remaining distance bounded by the measured
+//! contraction), and the steady state is taken there (a fixed point
+//! searched from the orbit's end is used only if it lies within that
+//! bound). Without an established limit within `run.max_periods` the result
+//! is [`Outcome::NotConverged`], with the bounds of 2.
 //!
 //! # Only what the scene asks for
 //!
 //! The start-up from rest is simulated only when something needs it: the
 //! start-up time, the start-up's stiction fraction, the event log,
 //! `run.verify_steady_state`. Otherwise (a `v_inf`-only scene, or one that
-//! asks only for steady-state indicators) an established fixed point `v*`
-//! of the search from rest is checked, instead of by the start-up, by a
-//! march of map evaluations from rest towards `v*`
-//! ([`analysis::fixed_point_is_nearest`]): at `x_i = i v* / 16`
-//! (`i = 1..15`), then at `v* (1 - 2^-j)` for `j = 5, 6, ...` while
-//! farther than the fixed point's bound from `v*`. When the start-up is
-//! simulated up to `p_0.99`, the same march runs from the orbit's last
-//! point on, since the orbit covers what lies behind it:
+//! asks only for steady-state indicators) the covering starts at rest;
+//! when the start-up is simulated up to `p_0.99`, it starts at the orbit's
+//! last point, since the orbit covers what lies behind it (each step
+//! `[u_k, u_(k+1)]` is a monotone step). If the orbit passes the fixed point
+//! (contradicting 2.) or settles elsewhere before `p_0.99`, the orbit
+//! decides.
 //!
-//! 4. a point `x` between rest and `v*` that the map does not move towards
-//!    `v*` (`P(x) <= x` for `v* > 0`) proves a fixed point in `[0, x]`:
-//!    `P` maps `[0, x]` into itself (`P(0) > 0`, `P(x) <= x`, monotone), so
-//!    it has a fixed point there (Tarski), nearer than `v*`; the run then
-//!    takes the orbit from rest (the slow path below);
-//! 5. every `x_i` with `g(x_i) = P(x_i) - x_i > 0` proves that no fixed
-//!    point lies in `[x_i, x_i + g(x_i)]`: for `v` there,
-//!    `P(v) >= P(x_i) = x_i + g(x_i) >= v`, equality only at the right
-//!    end, which is `P(x_i)`, and `P(P(x_i)) >= P(x_i)`, so the orbit from
-//!    `x_i` goes on; with `x_0 = 0` this covers `[0, P(0)]`, and the
-//!    orbit's own points cover `[0, u_k]`;
-//! 6. what 4. and 5. leave open is a further pair of fixed points (an
-//!    interval where `g` has the sign opposite to `P(0) - 0`) that falls
-//!    between two march points: narrower than `v* / 16` far from `v*`,
-//!    and narrower than about half its distance to `v*` near it (the
-//!    geometric points). Covering every gap by 5. would take about as many
-//!    map evaluations as the start-up itself, so this is not a proof for
-//!    such pairs: `run.verify_steady_state` settles the doubt by
-//!    simulating the start-up to its own limit and comparing.
-//!
-//! The reported `v_inf`, its error estimate (from the engine's bound at the
-//! fixed point, which needs no start-up) and the steady-state indicators
-//! are bit for bit those of a run that simulates the start-up: both take
-//! the same fixed point from the same search. `periods_simulated` is then
-//! 0, the start-up's event counts are all 0 (counted over what was
-//! simulated), and `work.map_evaluations` ([`RunReport::map_evaluations`])
-//! counts the search, the march and the steady-state periods.
+//! Where the search's fixed point is certified, the reported `v_inf`, its
+//! error estimate and the steady-state indicators are bit for bit those of
+//! a run that simulates the start-up: both take the same fixed point from
+//! the same search. `periods_simulated` is then 0, the start-up's event
+//! counts are all 0 (counted over what was simulated), and
+//! `work.map_evaluations` ([`RunReport::map_evaluations`]) counts the
+//! search, the covering and the steady-state periods.
 //!
 //! With `run.verify_steady_state` the start-up is run on to its own limit
 //! and compared with the fixed point: a difference beyond the two error
@@ -113,7 +95,10 @@ mod outcome;
 
 pub use crate::analysis::ErrorEstimate;
 pub use cache::SignalCache;
-pub use outcome::{Outcome, Regime, RunReport, SteadyStateCheck, Unsettled};
+pub use outcome::{
+    CertificateKind, Outcome, Regime, RunReport, SteadyStateCertificate, SteadyStateCheck,
+    Unsettled,
+};
 
 use crate::engine::PeriodEngine;
 use crate::engine::event::{EventEngine, EventOptions};

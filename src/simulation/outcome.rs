@@ -37,6 +37,44 @@ impl SteadyStateCheck {
     }
 }
 
+/// How a steady state was established as the limit of the motion from
+/// rest (docs/model.md section 3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CertificateKind {
+    /// The gap between rest (or the simulated orbit from rest) and the
+    /// fixed point was covered by pieces proven free of fixed points.
+    Covering,
+    /// The orbit from rest was simulated until its own limit was
+    /// established (an exact repetition, or a remaining distance bounded by
+    /// the measured contraction).
+    Orbit,
+}
+
+impl CertificateKind {
+    /// Name in reports: `covering`, `orbit`.
+    pub fn name(self) -> &'static str {
+        match self {
+            CertificateKind::Covering => "covering",
+            CertificateKind::Orbit => "orbit",
+        }
+    }
+}
+
+/// How the reported steady state was established and what that cost.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SteadyStateCertificate {
+    /// The argument that makes the steady state the motion from rest.
+    pub kind: CertificateKind,
+    /// Map evaluations the covering took (also when it did not succeed and
+    /// the orbit decided).
+    pub evaluations: u64,
+    /// Distance (m/s, in the boundary velocity) from the reported fixed
+    /// point to the nearest other fixed point found on the way: one the
+    /// search reached first and the covering showed not to be the limit.
+    /// `None` if none was found; its absence proves nothing.
+    pub other_fixed_point: Option<f64>,
+}
+
 /// Everything a run that reached a periodic steady state produced.
 #[derive(Debug, Clone)]
 pub struct RunReport {
@@ -79,6 +117,8 @@ pub struct RunReport {
     pub wall_time: Duration,
     /// The cross-check of `run.verify_steady_state`, when asked.
     pub steady_state_check: Option<SteadyStateCheck>,
+    /// How the steady state was established as the limit from rest.
+    pub certificate: SteadyStateCertificate,
     /// The event log of the start-up (periods `1..=p_0.99`), if asked: its
     /// first [`crate::observer::MAX_LOGGED_EVENTS`] events.
     pub event_log: Option<Vec<Event>>,
