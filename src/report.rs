@@ -467,17 +467,25 @@ fn steady_text(r: &RunReport) -> String {
         }
     }
     let c = &r.certificate;
-    let _ = writeln!(
-        out,
-        "limit from rest: {} ({} map evaluation{})",
-        match c.kind {
-            CertificateKind::Covering =>
-                "certified by a covering (pieces proven free of other fixed points)",
-            CertificateKind::Orbit => "the start-up from rest simulated to its limit",
-        },
-        c.evaluations,
-        if c.evaluations == 1 { "" } else { "s" }
-    );
+    let plural = if c.evaluations == 1 { "" } else { "s" };
+    let _ = match c.kind {
+        CertificateKind::Covering => writeln!(
+            out,
+            "limit from rest: certified by covering the gap with pieces free of other fixed \
+             points ({} map evaluation{plural})",
+            c.evaluations
+        ),
+        CertificateKind::Orbit if c.evaluations > 0 => writeln!(
+            out,
+            "limit from rest: the start-up simulated to its own limit (the covering did not \
+             close in {} map evaluation{plural})",
+            c.evaluations
+        ),
+        CertificateKind::Orbit => writeln!(
+            out,
+            "limit from rest: the start-up simulated to its own limit"
+        ),
+    };
     if let Some(d) = c.other_fixed_point {
         let _ = writeln!(
             out,

@@ -705,3 +705,147 @@ fn exact_slopes_match_differences_of_v_inf() {
     assert!(smooth >= 8, "{smooth} smooth points checked");
     eprintln!("{smooth} smooth and {one_sided} one-sided slopes checked");
 }
+
+/// The default scene without sliding friction (`mu_dynamic = 0`, as
+/// `stickslip default-scene` with that one line changed): a slider that
+/// slips feels no friction, so the period map is neutral (`P' = 1`)
+/// wherever it slips. At zero load the slider slips from rest on and keeps
+/// its velocity 0 (`v_inf = 0` exactly, no drive, no slope); any load makes
+/// it drift by `g_t T` per period, so the loads next to 0 take ever more
+/// periods and the runs nearest to 0 do not converge within
+/// `run.max_periods`. The characteristic is still complete, and the work it
+/// takes is bounded.
+#[test]
+fn a_drive_without_sliding_friction_has_a_complete_characteristic_in_bounded_runs() {
+    let dir = scratch("characteristic", "no_sliding_friction");
+    let mut scene = Scene::default();
+    scene.motor.mu_dynamic = 0.0;
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, scene.to_toml()).unwrap();
+    // The premise, from a run of its own: at zero load the slider never
+    // sticks (no stick event from rest, none in the steady period), so its
+    // acceleration is +-a_d + g_t = 0 throughout (docs/model.md section 1)
+    // and its velocity stays at its initial 0: v_inf = 0 exactly, on a map
+    // that is neutral there.
+    let mut at_rest = scene.clone();
+    at_rest.outputs.indicators = vec![Indicator::VInf, Indicator::StartupTime];
+    let Outcome::Steady(r) = stickslip::simulate(&at_rest).unwrap() else {
+        panic!("no steady state at zero load");
+    };
+    let startup = r.transient.as_ref().expect("the start-up was simulated");
+    let events = startup.events(startup.periods());
+    assert_eq!(events.stick_to_slip + events.slip_to_stick, 0, "{events:?}");
+    assert_eq!(r.steady.stats.events.slip_to_stick, 0);
+    assert_eq!(r.steady.map_derivative, 1.0);
+    assert_eq!(r.indicators.v_inf, 0.0);
+
+    let json = dir.join("c.json");
+    let figure = dir.join("c.svg");
+    let clock = std::time::Instant::now();
+    let o = stickslip(&[
+        "characteristic",
+        path.to_str().unwrap(),
+        "-o",
+        json.to_str().unwrap(),
+        "--figure",
+        figure.to_str().unwrap(),
+        "-q",
+    ]);
+    let wall = clock.elapsed();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    eprintln!(
+        "mu_dynamic = 0: {} in {:.2} s (process)",
+        v["evaluations"],
+        wall.as_secs_f64()
+    );
+
+    // No drive: the stall force is 0 and the datasheet follows from
+    // v_inf(0) = 0; the holding force is mu_0 F_c (closed form).
+    assert_eq!(v["no_load_speed"], 0.0);
+    assert_eq!(v["stall"]["kind"], "no-drive");
+    assert_eq!(v["stall"]["force"], 0.0);
+    assert!(v["held_band"].is_null(), "slipping is not held");
+    let d = &v["datasheet"];
+    assert_eq!(d["max_speed"]["value"], 0.0);
+    assert_eq!(d["stall_force"]["value"], 0.0);
+    assert_eq!(d["recommended_load"]["value"], 0.0);
+    assert_eq!(d["max_output_power"]["value"], 0.0);
+    assert_eq!(
+        d["holding_force"]["value"].as_f64(),
+        Some(scene.motor.mu_static * scene.motor.contact_force)
+    );
+
+    // The point at zero load: a steady state without a slope, absent in
+    // JSON (null) and CSV (empty cells), method `unavailable`.
+    let points = v["points"].as_array().unwrap();
+    let zero: Vec<&serde_json::Value> = points.iter().filter(|p| p["load"] == 0.0).collect();
+    assert_eq!(zero.len(), 1, "{points:?}");
+    let zero = zero[0];
+    assert_eq!(zero["v_inf"], 0.0);
+    assert_eq!(zero["regime"], "slip-slip");
+    assert_eq!(zero["slope_method"], "unavailable");
+    // Pushing loads next to 0 drift for longer than run.max_periods: the
+    // curve's high end is the last load known steady, zero load, marked
+    // as such (not as a run-away).
+    assert_eq!(v["run_away"]["above"]["regime"], "not_converged");
+    assert_eq!(v["run_away"]["above"]["load"], 0.0);
+    let marks: Vec<&str> = zero["marks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|m| m.as_str())
+        .collect();
+    assert!(marks.contains(&"not_converged_limit"), "{marks:?}");
+    for key in ["slope", "slope_left", "slope_right"] {
+        assert!(zero[key].is_null(), "{key} at zero load: {}", zero[key]);
+    }
+    let csv = std::fs::read_to_string(figure.with_extension("csv")).unwrap();
+    let header: Vec<&str> = csv
+        .lines()
+        .find(|l| l.starts_with("load,"))
+        .unwrap()
+        .split(',')
+        .collect();
+    let row: Vec<&str> = csv
+        .lines()
+        .find(|l| l.starts_with("0,"))
+        .expect("a CSV row at zero load")
+        .split(',')
+        .collect();
+    let cell = |name: &str| row[header.iter().position(|h| *h == name).unwrap()];
+    for name in ["slope", "slope_left", "slope_right"] {
+        assert_eq!(cell(name), "", "{name}");
+    }
+    assert_eq!(cell("slope_method"), "unavailable");
+    // Every other point with a steady state has its slope, exact or
+    // one-sided: the sampling did not depend on the one that is missing.
+    for p in points
+        .iter()
+        .filter(|p| p["load"] != 0.0 && !p["v_inf"].is_null())
+    {
+        assert!(
+            p["slope_method"] == "exact" || p["slope_method"] == "one_sided",
+            "{p}"
+        );
+    }
+
+    // The work. v_inf evaluations: the 17 grid loads (zero among them);
+    // each end of the curve a bisection from a grid step mu_0 F_c / 8 to
+    // 1e-9 mu_0 F_c, at most ceil(log2(1.25e8)) = 27 halvings; the
+    // refinement of the jump at zero load, at most 2 midpoints per halving
+    // of the steady stretch (narrower than 4.4e-5 N, the low end found
+    // here) down to 1e-6 of the range, ceil(log2(4.4e-5 / 3.5e-7)) = 7
+    // halvings; no stall search, held band or largest power without drive.
+    let n = &v["evaluations"];
+    let bound = 17 + 2 * 27 + 2 * 7;
+    assert!(n["v_inf"].as_u64().unwrap() <= bound, "{n}");
+    assert_eq!(n["stall"], 0);
+    assert_eq!(n["max_power"], 0);
+    // Runs that do not converge cost run.max_periods periods each: at most
+    // one per end of the curve (its bisection stops at the first) and one
+    // for the refinement of the jump at zero load (it does not refine past
+    // one).
+    assert!(n["not_converged"].as_u64().unwrap() <= 3, "{n}");
+}

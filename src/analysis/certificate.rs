@@ -103,6 +103,8 @@ impl Observer for ModeRecorder {
 struct Probe {
     v: f64,
     p: f64,
+    /// The step `x_S(T) - x_S(0)` of the period (m).
+    step: f64,
     /// Bound on `|computed P(v) - P(v)|` (infinite through a grazing).
     error: f64,
     stretches: Vec<Stretch>,
@@ -128,6 +130,7 @@ fn probe<E: PeriodEngine>(engine: &mut E, v: f64) -> Result<Probe, SimulationErr
     Ok(Probe {
         v,
         p: end.velocity,
+        step: end.step,
         error: if error.is_nan() { f64::INFINITY } else { error },
         stretches: recorder.stretches,
     })
@@ -157,8 +160,10 @@ fn growth_bound(
 ) -> f64 {
     let period = signal.period();
     // The bound rests on the modes of the whole period; an engine that
-    // hands out no segments gives none.
-    if !(covers(&lower.stretches, period) && covers(&upper.stretches, period)) {
+    // hands out no segments gives none, and a period that held a decision
+    // no error bound survives (a grazing) may have its modes wrong.
+    let usable = |x: &Probe| covers(&x.stretches, period) && x.error.is_finite();
+    if !(usable(lower) && usable(upper)) {
         return f64::INFINITY;
     }
     if friction.a_0 <= friction.a_d {
@@ -198,9 +203,8 @@ fn growth_bound(
     for w in points.windows(2) {
         let (p, q) = (w[0], w[1]);
         let a_q = signal.acceleration(q.min(period * (1.0 - f64::EPSILON)));
-        let (l_stick, l_forward, l_backward) = possible(&lower.stretches, p, q);
-        let (u_stick, u_forward, u_backward) = possible(&upper.stretches, p, q);
-        let _ = (l_backward, u_forward);
+        let (l_stick, l_forward, _) = possible(&lower.stretches, p, q);
+        let (u_stick, _, u_backward) = possible(&upper.stretches, p, q);
         // Row "upper stuck, lower forward": a below, b not below.
         let rises = l_forward && (u_stick || u_backward);
         // Row "upper backward, lower stuck": a not above, b above.
@@ -302,11 +306,21 @@ pub(crate) enum Verdict {
 pub(crate) struct Covering {
     pub(crate) verdict: Verdict,
     pub(crate) evaluations: u32,
+    /// When certified: bounds `(lo, hi)` on the mean velocity `v_inf` of
+    /// the limit from rest (m/s). The limit's boundary velocity lies
+    /// between the two ends `v* -+ 2 bound`, and a slider that starts a
+    /// period faster stays ahead through it, so its step lies between the
+    /// ends' steps; each is widened by the end's velocity error bound.
+    /// This holds also where `v_inf` jumps with the boundary velocity.
+    pub(crate) v_inf_bounds: Option<(f64, f64)>,
 }
 
 /// The covering of the module docs between `from` (rest, or a point of the
 /// orbit from rest) and `v_star - 2 bound` ([`CERTIFIED_REACH`], on the
-/// side of `from`), with at most `budget` map evaluations.
+/// side of `from`), with at most `budget` map evaluations, closed by a
+/// point `v_star + 2 bound` that the map moves back: `P` then maps the
+/// interval between the covering's end and that point into itself, so the
+/// limit from rest lies within `2 bound` of `v_star`.
 pub(crate) fn certify<E: PeriodEngine>(
     engine: &mut E,
     motor: &Motor,
@@ -315,13 +329,52 @@ pub(crate) fn certify<E: PeriodEngine>(
     bound: f64,
     budget: u32,
 ) -> Result<Covering, SimulationError> {
-    let s = if v_star > from { 1.0 } else { -1.0 };
-    let target = v_star - s * CERTIFIED_REACH * bound;
-    let mut evaluations = 0;
-    if (target - from) * s <= 0.0 {
+    let s = if v_star > from {
+        1.0
+    } else if v_star < from || v_star < 0.0 {
+        -1.0
+    } else if v_star > 0.0 {
+        1.0
+    } else {
+        // At rest, and the map leaves rest where it is.
         return Ok(Covering {
             verdict: Verdict::Certified,
+            evaluations: 0,
+            v_inf_bounds: None,
+        });
+    };
+    let target = v_star - s * CERTIFIED_REACH * bound;
+    let mut evaluations = 0;
+    // The end beyond v*: a point there that the map moves back proves a
+    // fixed point between the covering's end `target` and it; the steps of
+    // the two ends bound the limit's v_inf.
+    let period = engine.signal().period();
+    let closes = |engine: &mut E,
+                  evaluations: &mut u32,
+                  end: Option<Probe>|
+     -> Result<(Verdict, Option<(f64, f64)>), SimulationError> {
+        let end = match end {
+            Some(end) => end,
+            None => {
+                *evaluations += 1;
+                probe(engine, target)?
+            }
+        };
+        let beyond = probe(engine, v_star + s * CERTIFIED_REACH * bound)?;
+        *evaluations += 1;
+        if s * (beyond.p - beyond.v) + beyond.error >= 0.0 {
+            return Ok((Verdict::Undecided, None));
+        }
+        let mean = |x: &Probe, side: f64| x.step / period + side * x.error;
+        let (a, b) = (mean(&end, -s), mean(&beyond, s));
+        Ok((Verdict::Certified, Some((a.min(b), a.max(b)))))
+    };
+    if (target - from) * s <= 0.0 {
+        let (verdict, v_inf_bounds) = closes(engine, &mut evaluations, None)?;
+        return Ok(Covering {
+            verdict,
             evaluations,
+            v_inf_bounds,
         });
     }
     let friction = Friction {
@@ -347,10 +400,12 @@ pub(crate) fn certify<E: PeriodEngine>(
                 Verdict::Undecided
             },
             evaluations,
+            v_inf_bounds: None,
         });
     }
-    let mut stack = vec![probe(engine, target)?];
+    let end = probe(engine, target)?;
     evaluations += 1;
+    let mut stack = vec![end.clone()];
     while let Some(right) = stack.last() {
         // Monotone step: P(left) beyond right.
         let monotone = s * (left.p - right.v) > left.error;
@@ -376,6 +431,7 @@ pub(crate) fn certify<E: PeriodEngine>(
                     far: right.v,
                 },
                 evaluations,
+                v_inf_bounds: None,
             });
         }
         let m = 0.5 * (left.v + right.v);
@@ -383,14 +439,17 @@ pub(crate) fn certify<E: PeriodEngine>(
             return Ok(Covering {
                 verdict: Verdict::Undecided,
                 evaluations,
+                v_inf_bounds: None,
             });
         }
         stack.push(probe(engine, m)?);
         evaluations += 1;
     }
+    let (verdict, v_inf_bounds) = closes(engine, &mut evaluations, Some(end))?;
     Ok(Covering {
-        verdict: Verdict::Certified,
+        verdict,
         evaluations,
+        v_inf_bounds,
     })
 }
 
@@ -519,8 +578,8 @@ mod tests {
     }
 
     /// The covering proves the search's fixed point of the paper's default
-    /// scene from rest in two evaluations (`P(0)`, `P(v* - 2 b)`: no growth
-    /// between them), and reports a nearer fixed point for the optimum
+    /// scene from rest in three evaluations (`P(0)`, `P(v* - 2 b)`: no
+    /// growth between them; `P(v* + 2 b) < v* + 2 b` closes it), and reports a nearer fixed point for the optimum
     /// with two: the bracket it returns holds a point the map moves
     /// towards the target and one it does not, checked here by evaluating
     /// the map.
@@ -546,7 +605,15 @@ mod tests {
                         !expect_nearer,
                         "certified {v_star} past a nearer fixed point"
                     );
-                    assert_eq!(covering.evaluations, 2);
+                    assert_eq!(covering.evaluations, 3);
+                    // The closing ends bound the limit's v_inf: the search's
+                    // fixed point's own v_inf lies between them.
+                    let (lo, hi) = covering.v_inf_bounds.expect("certified");
+                    assert!(
+                        lo <= steady.v_inf && steady.v_inf <= hi,
+                        "{lo} {} {hi}",
+                        steady.v_inf
+                    );
                 }
                 Verdict::Nearer { near, far } => {
                     assert!(expect_nearer, "a nearer fixed point for {v_star}");

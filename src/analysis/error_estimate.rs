@@ -27,8 +27,14 @@ pub struct ErrorEstimate {
 
 /// The rounding bound on velocities over one period's segments (m/s).
 pub(crate) fn rounding_velocity(signal: &Signal, steady: &SteadyState) -> f64 {
-    let segments = steady.stats.events.total() as f64 + 2.0;
-    8.0 * f64::EPSILON * segments * signal.velocity_scale()
+    rounding_velocity_of(signal, steady.stats.events.total())
+}
+
+/// The rounding bound on the slider velocity at the end of a period with
+/// `events` events (m/s): `8 eps` per segment (`events + 2` of them), of
+/// `max |v_R|`.
+pub(crate) fn rounding_velocity_of(signal: &Signal, events: u64) -> f64 {
+    8.0 * f64::EPSILON * (events as f64 + 2.0) * signal.velocity_scale()
 }
 
 /// The engine's bound on the boundary velocity of the periodic orbit

@@ -52,4 +52,4 @@ pub use error_estimate::ErrorEstimate;
 pub use fixed_point::{fixed_point, fixed_point_between};
 pub use stats::{PeriodStats, StatsObserver, StatsWanted};
 pub use steady_state::{SteadyIndicators, SteadyState, steady_state, steady_state_at};
-pub use transient::{AnalysisOptions, Transient, transient};
+pub use transient::{AnalysisOptions, Convergence, Transient, transient};

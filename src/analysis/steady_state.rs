@@ -45,20 +45,25 @@ pub fn steady_state<E: PeriodEngine, O: Observer>(
     let (v_star, map_derivative, iterations, last_correction) = fixed_point(engine, guess)?;
     steady_state_at(
         engine,
-        v_star,
+        PeriodStart {
+            velocity: v_star,
+            mode: None,
+        },
         (Some(map_derivative), iterations, last_correction),
         wanted,
         observer,
     )
 }
 
-/// The periodic orbit through the boundary velocity `v_star`, with one
-/// period observed by `observer`; `(P'(v_star), iterations, last
-/// correction)` come from the search that found it (or from the start-up
-/// that reached it).
+/// The periodic orbit through the boundary state `start` (a velocity
+/// `v_star`, and the mode the slider ends the previous period in when the
+/// start-up that reached it says so; without, it follows from the
+/// velocity), with one period observed by `observer`; `(P'(v_star),
+/// iterations, last correction)` come from the search that found it (or
+/// from the start-up that reached it).
 pub fn steady_state_at<E: PeriodEngine, O: Observer>(
     engine: &mut E,
-    v_star: f64,
+    start: PeriodStart,
     (map_derivative, iterations, last_correction): (Option<f64>, u32, f64),
     wanted: StatsWanted,
     observer: &mut O,
@@ -66,14 +71,8 @@ pub fn steady_state_at<E: PeriodEngine, O: Observer>(
     // One unobserved period gives the mode the orbit has at its period
     // boundary, so that the observed period reports the transition at
     // phase 0 like every other.
-    let before = engine.run_period(
-        2,
-        PeriodStart {
-            velocity: v_star,
-            mode: None,
-        },
-        &mut (),
-    )?;
+    let v_star = start.velocity;
+    let before = engine.run_period(2, start, &mut ())?;
     // The regime and the error estimate need the stick and slip times and
     // the sliding distance of this one period, whatever else is wanted.
     let mut stats = StatsObserver::new(

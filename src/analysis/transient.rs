@@ -3,7 +3,14 @@
 //! is reached or the period limit. `p_0.99` is the first period with
 //! `v_p >= 0.99 v_inf` (for a slider that moves backwards,
 //! `v_p <= 0.99 v_inf`).
+//!
+//! Converged means the limit of the orbit is established (see
+//! [`transient`]): the boundary state repeated exactly, or it repeated
+//! within the rounding of a velocity in periods with a stick phase (the
+//! period map is locally constant there), or the measured contraction
+//! bounds the remaining distance.
 
+use super::error_estimate::rounding_velocity_of;
 use super::stats::{StatsObserver, StatsWanted};
 use crate::engine::{Direction, EventCounts, Mode, PeriodEngine, PeriodStart};
 use crate::engine::{Observer, PeriodEnd};
@@ -20,13 +27,15 @@ pub struct Transient {
     /// Mode at the end of the last simulated period.
     pub final_mode: Mode,
     /// True if the motion's limit was established: the boundary velocity
-    /// repeated exactly, or the measured contraction bounds the remaining
+    /// repeated exactly, or it repeated within rounding in periods with a
+    /// stick phase, or the measured contraction bounds the remaining
     /// distance below the tolerance.
     pub converged: bool,
     /// Bound on the distance from the last boundary velocity to its limit
     /// (m/s), when converged: `|c| rho / (1 - rho)` with the last change `c`
-    /// and the largest of the last measured contraction ratios `rho`; 0
-    /// when the boundary state repeated exactly.
+    /// and the largest of the last measured contraction ratios `rho`;
+    /// the rounding bound `r` for a repetition within it in periods with a
+    /// stick phase; 0 when the boundary state repeated exactly.
     pub remaining: Option<f64>,
     /// Estimated error of [`Transient::v_inf`] (m/s), when converged: the
     /// distance of the last period's start velocity to the limit (the
@@ -46,6 +55,21 @@ pub struct Transient {
     /// Set when the slider ran away: it slid a whole period without any
     /// event outside the rod's velocity range, moving further away.
     pub run_away: Option<Direction>,
+    /// How the limit was established, when it was.
+    pub converged_by: Option<Convergence>,
+}
+
+/// The test that established the limit of the start-up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Convergence {
+    /// The boundary state repeated exactly.
+    Exact,
+    /// It repeated within rounding in periods with a stick phase.
+    Rounding,
+    /// The measured contraction ratios bound the remaining distance: an
+    /// extrapolation, which a motion that slows down only for a while (past
+    /// a near-tangency of the period map) can fool.
+    Ratio,
 }
 
 impl Transient {
@@ -100,6 +124,9 @@ pub struct AnalysisOptions {
     /// first period with `v_p / v_inf >= 0.99` (`p_0.99`) instead of running
     /// to convergence.
     pub stop_at_startup: Option<f64>,
+    /// Whether the contraction ratios may establish the limit
+    /// ([`Convergence::Ratio`]); without, only a repetition does.
+    pub ratio_rule: bool,
 }
 
 impl Default for AnalysisOptions {
@@ -108,6 +135,7 @@ impl Default for AnalysisOptions {
             max_periods: 1_000_000,
             transient_tolerance: 1e-13,
             stop_at_startup: None,
+            ratio_rule: true,
         }
     }
 }
@@ -124,6 +152,19 @@ const RATIOS: usize = 3;
 /// size of a change alone (a motion that has barely begun changes little):
 /// * the boundary state (velocity and mode) repeated exactly, so the orbit
 ///   is periodic from there on; or
+/// * it repeated within rounding in periods with a stick phase: in each
+///   of the last two periods the mode repeated, the change `c` of the
+///   boundary velocity is at most the rounding bound `r` of the period's
+///   end velocity (`8 eps` per segment of `max |v_R|`, docs/model.md
+///   section 11), and the exact map derivative `P'` the engine carried
+///   through both periods is 0 (the map is locally constant: a stuck
+///   slider forgets its velocity). The limit is then within the rounding
+///   width `r` of the period's end. This is the orbit that lands on two or
+///   a few floating point values within rounding of each other and would
+///   never repeat exactly. With `0 < P' < 1` such a repetition is not
+///   taken: an orbit that creeps by rounding-sized steps past a
+///   near-tangency of the map can still be on its way to a change of the
+///   event structure, where the map jumps; or
 /// * the last three contraction ratios `rho_k = |c_k / c_(k-1)|` of
 ///   the changes `c_k` of the boundary velocity are below 1 and bound the
 ///   remaining distance, `|c| rho / (1 - rho) <= tol` with `rho` the
@@ -163,6 +204,10 @@ pub fn transient<E: PeriodEngine, O: Observer>(
     let mut displacement = CompensatedSum::default();
     let mut boundary_velocities = Vec::new();
     let mut run_away = None;
+    let mut converged_by = None;
+    // The map derivative of the previous period, if its boundary state
+    // repeated within rounding.
+    let mut rounded_before: Option<f64> = None;
     let mut p = 0u64;
     while p < options.max_periods {
         p += 1;
@@ -176,7 +221,10 @@ pub fn transient<E: PeriodEngine, O: Observer>(
         period_events.push(stats.last.events);
         boundary_velocities.push(end.velocity);
         let change = end.velocity - start.velocity;
-        let repeated = change == 0.0 && start.mode == Some(end.mode);
+        let same_mode = start.mode == Some(end.mode);
+        let repeated = change == 0.0 && same_mode;
+        let rounding = rounding_velocity_of(engine.signal(), stats.last.events.total());
+        let rounded = same_mode && change.abs() <= rounding;
         start = PeriodStart {
             velocity: end.velocity,
             mode: Some(end.mode),
@@ -190,12 +238,33 @@ pub fn transient<E: PeriodEngine, O: Observer>(
         if repeated {
             remaining = Some(0.0);
             v_inf_error = Some(tol);
+            converged_by = Some(Convergence::Exact);
             break;
         }
         let ev = &stats.last.events;
         run_away = runaway(&end, ev.total() - ev.jump, change, (lo_r, hi_r));
         if run_away.is_some() {
             break;
+        }
+        if rounded {
+            let derivative = rounded_before.map(|d: f64| d.max(end.map_derivative));
+            // Only a stick phase in both periods (P' = 0: the map is
+            // locally constant) makes a repetition within rounding a limit;
+            // with 0 < P' < 1 an orbit that creeps by rounding-sized steps
+            // can still be on its way past a change of the event
+            // structure, where the map jumps.
+            if let Some(d) = derivative.filter(|d| *d == 0.0) {
+                let tail = rounding + d * (change.abs() + rounding) / (1.0 - d);
+                if tail <= tol {
+                    remaining = Some(tail);
+                    v_inf_error = Some(tail + change.abs() + tol);
+                    converged_by = Some(Convergence::Rounding);
+                    break;
+                }
+            }
+            rounded_before = Some(end.map_derivative);
+        } else {
+            rounded_before = None;
         }
         if let Some(before) = last_change {
             if ratios.len() == RATIOS {
@@ -204,7 +273,7 @@ pub fn transient<E: PeriodEngine, O: Observer>(
             ratios.push((change / before).abs());
         }
         last_change = Some(change);
-        if ratios.len() < RATIOS {
+        if ratios.len() < RATIOS || !options.ratio_rule {
             continue;
         }
         let rho = ratios.iter().copied().fold(0.0, f64::max);
@@ -216,6 +285,7 @@ pub fn transient<E: PeriodEngine, O: Observer>(
             remaining = Some(tail);
             // v_p of this period started one change before the end.
             v_inf_error = Some(tail + change.abs() + tol);
+            converged_by = Some(Convergence::Ratio);
             break;
         }
     }
@@ -231,6 +301,7 @@ pub fn transient<E: PeriodEngine, O: Observer>(
         displacement: displacement.value(),
         boundary_velocities,
         run_away,
+        converged_by,
     })
 }
 

@@ -9,7 +9,18 @@
 //! holds forwards for `F < -mu_0 F_c`. The curve therefore lies within
 //! `[-mu_0 F_c, mu_0 F_c]`; where exactly it ends (in practice near
 //! `+-mu_d F_c`, where sliding friction can no longer hold the load) is
-//! found by bisection.
+//! found by bisection ([`limit_between`]).
+//!
+//! **A run that does not converge ends the bisection.** A load whose run
+//! did not establish the limit of the motion from rest within
+//! `run.max_periods` (regime `not_converged`) may or may not have a steady
+//! state, and every such run costs `run.max_periods` periods. Near a load
+//! where the slider barely drifts (with `mu_dynamic = 0` the slider slips
+//! without friction, and a load `F` changes its velocity by only `F T / m_s`
+//! per period, so the loads nearest to 0 need ever more periods), halving
+//! towards the steady load would meet one such run after another. So the
+//! bisection stops at the first: the end is then the last steady load and
+//! that load (regime `not_converged`), farther apart than the tolerance.
 //!
 //! [`boundary`]: bisection of a predicate that changes once along a
 //! segment. Contract: given `inside` where the predicate holds and
@@ -23,7 +34,9 @@ use super::CharacteristicError;
 use super::evaluate::{Evaluation, Evaluator, Purpose};
 
 /// One end of the curve: the last load with a steady state and the first
-/// without, at most the tolerance apart.
+/// without, at most the tolerance apart; or, when the bisection met a run
+/// that did not converge, the last steady load and that load, which may be
+/// farther apart (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limit {
     /// The last load with a steady state (N): the end of the curve.
@@ -66,19 +79,30 @@ pub(super) fn boundary<E>(
     Ok((inside, outside))
 }
 
-/// The end of the curve between a steady evaluation and an unsteady one,
-/// to within `tol` (N).
+/// The end of the curve between a steady evaluation and an unsteady one:
+/// bisection as [`boundary`] to within `tol` (N), except that it stops at
+/// the first load whose run did not converge (module docs).
 pub(super) fn limit_between(
     evaluator: &Evaluator,
     steady: Evaluation,
     unsteady: Evaluation,
     tol: f64,
 ) -> Result<Limit, CharacteristicError> {
-    let (inside, outside) = boundary(steady.load, unsteady.load, tol, |f| {
-        Ok::<_, CharacteristicError>(evaluator.at(f, Purpose::RunAway)?.is_steady())
-    })?;
+    let (mut inside, mut outside) = (steady, unsteady);
+    while (outside.load - inside.load).abs() > tol && !outside.is_unsettled() {
+        let mid = 0.5 * (inside.load + outside.load);
+        if mid == inside.load || mid == outside.load {
+            break;
+        }
+        let e = evaluator.at(mid, Purpose::RunAway)?;
+        if e.is_steady() {
+            inside = e;
+        } else {
+            outside = e;
+        }
+    }
     Ok(Limit {
-        last_steady: evaluator.at(inside, Purpose::RunAway)?,
-        first_unsteady: evaluator.at(outside, Purpose::RunAway)?,
+        last_steady: inside,
+        first_unsteady: outside,
     })
 }

@@ -49,6 +49,11 @@ pub struct Counts {
     pub max_power: u64,
     /// The start-up run.
     pub transient: u64,
+    /// Of all these, the runs that did not establish the limit of the
+    /// motion from rest within `run.max_periods` (regime `not_converged`):
+    /// each simulated that many periods, so they set the cost where they
+    /// occur.
+    pub not_converged: u64,
 }
 
 impl Counts {
@@ -103,6 +108,13 @@ impl Evaluation {
     /// True if the motion from rest reaches a periodic steady state.
     pub fn is_steady(&self) -> bool {
         self.v_inf.is_some()
+    }
+
+    /// True if the run did not establish the limit of the motion from rest
+    /// within `run.max_periods` (regime `not_converged`): whether the load
+    /// has a steady state is not known.
+    pub fn is_unsettled(&self) -> bool {
+        self.regime == "not_converged"
     }
 
     /// True if the slider is held still: it follows the rod throughout
@@ -216,9 +228,14 @@ impl Evaluator {
         purpose: Purpose,
     ) -> Result<Outcome, CharacteristicError> {
         self.counts.borrow_mut().add(purpose);
-        self.cache
+        let outcome = self
+            .cache
             .simulate(scene)
-            .map_err(|source| CharacteristicError::Simulation { load, source })
+            .map_err(|source| CharacteristicError::Simulation { load, source })?;
+        if matches!(outcome, Outcome::NotConverged(_)) {
+            self.counts.borrow_mut().not_converged += 1;
+        }
+        Ok(outcome)
     }
 
     /// The steady orbit's boundary velocity at a load evaluated before.

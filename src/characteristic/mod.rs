@@ -31,8 +31,10 @@
 //!   (`output_power`);
 //! * the force a start-up measurement would report (`transient`);
 //! * the datasheet block (`datasheet`);
-//! * the slope `d v_inf / d F` at every point (`slope`: a central
-//!   difference standing in for the exact derivative);
+//! * the slope `d v_inf / d F` at every point (`slope`: exact, one-sided
+//!   where the event structure changes, absent where the period map does
+//!   not contract), computed after the points are chosen, so that a slope
+//!   that is not available changes no other number;
 //! * text, JSON and CSV (`table`).
 //!
 //! Monotonicity: `v_inf` does not increase with `F` (a slider pushed harder
@@ -42,8 +44,16 @@
 //!
 //! # Cost
 //!
-//! [`Characteristic::counts`] gives the simulations run by purpose; every
-//! distinct load is simulated once.
+//! [`Characteristic::counts`] gives the simulations run by purpose, and how
+//! many of them did not converge within `run.max_periods` (each of those
+//! simulated that many periods); every distinct load is simulated once.
+//! The number of simulations is bounded by construction: at most
+//! `--max-evaluations` for the sampled curve (or its 17 + 1 grid loads), a
+//! bisection per end of the curve (about 27 halvings from a grid step of
+//! `mu_0 F_c / 8` down to `1e-9 mu_0 F_c`), the stall search (eight grid
+//! loads, Brent's method and bisections, each at most 200 steps), the held
+//! band's edges, the 16 loads and Brent's search of the largest power, and
+//! one start-up run.
 
 mod datasheet;
 mod domain;
@@ -255,6 +265,10 @@ pub enum Mark {
     MaxPower,
     /// The last load with a steady state before a run-away.
     RunAwayLimit,
+    /// The last load with a steady state before a load whose run did not
+    /// converge within `run.max_periods` (the end of the curve as far as
+    /// it is known, `domain`).
+    UnsettledLimit,
 }
 
 impl Mark {
@@ -266,6 +280,7 @@ impl Mark {
             Mark::HeldEdge => "held_edge",
             Mark::MaxPower => "max_power",
             Mark::RunAwayLimit => "run_away_limit",
+            Mark::UnsettledLimit => "not_converged_limit",
         }
     }
 }
@@ -438,7 +453,12 @@ pub fn characteristic(
         add(p.at, Some(Mark::MaxPower));
     }
     for limit in [below, above].into_iter().flatten() {
-        add(limit.last_steady, Some(Mark::RunAwayLimit));
+        let mark = if limit.first_unsteady.is_unsettled() {
+            Mark::UnsettledLimit
+        } else {
+            Mark::RunAwayLimit
+        };
+        add(limit.last_steady, Some(mark));
     }
     points.sort_by(|a, b| a.x.total_cmp(&b.x));
     for p in &mut points {

@@ -8,8 +8,9 @@
 //!    are evaluated.
 //! 2. If the range's ends have no steady state, each end of the curve is
 //!    found by bisection between the outermost steady load and its unsteady
-//!    neighbour ([`super::domain`]), to the limit tolerance in force; the
-//!    last steady load joins the samples.
+//!    neighbour ([`super::domain`]), to the limit tolerance in force (or up
+//!    to the first load whose run did not converge); the last steady load
+//!    joins the samples.
 //! 3. Every interval between two neighbouring steady samples has its
 //!    midpoint evaluated (so even a straight stretch is sampled twice as
 //!    densely as the grid); where `v_inf` at the midpoint differs from the
@@ -20,9 +21,12 @@
 //!    evenly and the result says it is incomplete.
 //!
 //! A kink (the event structure changes, e.g. stick phases appear) is
-//! refined until the chord error is below the tolerance; a jump, if a
-//! curve had one, down to the minimum width, where it shows as a steep
-//! segment.
+//! refined until the chord error is below the tolerance; a jump (with
+//! `mu_dynamic = 0`, `v_inf` jumps at zero load) down to the minimum width,
+//! where it shows as a steep segment, or until a midpoint has no steady
+//! state or did not converge: its halves are not between steady
+//! neighbours. Nothing here depends on the slopes, which are computed
+//! afterwards at the points found.
 
 use super::domain::{Limit, limit_between};
 use super::evaluate::{Evaluation, Evaluator, Purpose};

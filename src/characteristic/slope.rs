@@ -14,9 +14,20 @@
 //! decreases `g_t`, so the left slope in `F` is the right derivative in
 //! `g_t`. Without a steady state there is no slope. No extra simulation is
 //! run: the derivative is carried through the steady period already found.
+//!
+//! Where the period map does not contract at the fixed point (`P' = 1`:
+//! with `mu_dynamic = 0` a slider that slips throughout feels no friction
+//! and keeps whatever velocity it has, so every velocity of its slip range
+//! is a fixed point), `v_inf` does not follow the load smoothly, not even
+//! from one side (any load makes the slider drift by `g_t T` per period
+//! until it sticks or runs away, so `v_inf` jumps there): the point has a
+//! steady state but no slope ([`SlopeMethod::Unavailable`]). That is a
+//! property of the point, not an error: the rest of the characteristic is
+//! computed as before (nothing else depends on the slopes).
 
 use super::CharacteristicError;
 use super::evaluate::Evaluator;
+use crate::error::{Error, SimulationError};
 use crate::sensitivity::{self, Derivative, Parameter};
 
 /// How the slopes are found, as outputs state it.
@@ -31,6 +42,11 @@ pub enum SlopeMethod {
     OneSided,
     /// No slope: no steady state.
     None,
+    /// A steady state without a slope: the period map does not contract at
+    /// its fixed point (`P' = 1`, e.g. with `mu_dynamic = 0`, where the
+    /// slider slips without friction), so `v_inf` does not follow the load
+    /// smoothly there, not even from one side.
+    Unavailable,
 }
 
 impl SlopeMethod {
@@ -40,6 +56,7 @@ impl SlopeMethod {
             SlopeMethod::Exact => "exact",
             SlopeMethod::OneSided => "one_sided",
             SlopeMethod::None => "none",
+            SlopeMethod::Unavailable => "unavailable",
         }
     }
 }
@@ -65,6 +82,14 @@ impl Slope {
         right: None,
         method: SlopeMethod::None,
     };
+
+    /// No slope at a steady state whose period map does not contract.
+    pub(super) const UNAVAILABLE: Slope = Slope {
+        value: None,
+        left: None,
+        right: None,
+        method: SlopeMethod::Unavailable,
+    };
 }
 
 /// `d v_inf / d F` at `load` (N), from the steady state found there.
@@ -73,13 +98,17 @@ pub(super) fn slope_at(ev: &Evaluator, load: f64) -> Result<Slope, Characteristi
         return Ok(Slope::NONE);
     };
     let scene = ev.scene_at(load);
-    let found = sensitivity::of_steady_state(
+    let found = match sensitivity::of_steady_state(
         &scene.signal,
         &scene.motor,
         boundary_velocity,
         &[Parameter::ExtraAcceleration],
-    )
-    .map_err(|source| CharacteristicError::Simulation { load, source })?;
+    ) {
+        Ok(found) => found,
+        // A neutral map (P' = 1 at the fixed point): no derivative exists.
+        Err(Error::Simulation(SimulationError::NoSensitivity(_))) => return Ok(Slope::UNAVAILABLE),
+        Err(source) => return Err(CharacteristicError::Simulation { load, source }),
+    };
     let Some(entry) = found.get(Parameter::ExtraAcceleration) else {
         return Ok(Slope::NONE);
     };

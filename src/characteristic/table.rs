@@ -143,6 +143,7 @@ pub(crate) fn to_json(c: &Characteristic, scene: &Scene) -> Value {
             "held_band": c.counts.held_band,
             "max_power": c.counts.max_power,
             "transient": c.counts.transient,
+            "not_converged": c.counts.not_converged,
         },
         "points": points,
         "wall_time_s": number(c.wall_time.as_secs_f64()),
@@ -306,7 +307,15 @@ pub(crate) fn to_text(c: &Characteristic) -> String {
     );
     let limit = |l: Option<&Limit>| {
         l.map_or("none in range".to_owned(), |l| {
-            format!("{} N", fmt(l.load()))
+            if l.first_unsteady.is_unsettled() {
+                format!(
+                    "{} N (at {} N not converged within run.max_periods)",
+                    fmt(l.load()),
+                    fmt(l.first_unsteady.load)
+                )
+            } else {
+                format!("{} N", fmt(l.load()))
+            }
         })
     };
     w(
@@ -392,7 +401,7 @@ pub(crate) fn to_text(c: &Characteristic) -> String {
     let n = &c.counts;
     let _ = writeln!(
         t,
-        "\n{} simulations ({} of v_inf: sampling {}, run-away {}, stall {}, held band {}, max power {}; start-up {}){}; {:.1} ms\nslopes: {}",
+        "\n{} simulations ({} of v_inf: sampling {}, run-away {}, stall {}, held band {}, max power {}; start-up {}){}{}; {:.1} ms\nslopes: {}",
         n.total(),
         n.v_inf(),
         n.sampling,
@@ -401,6 +410,11 @@ pub(crate) fn to_text(c: &Characteristic) -> String {
         n.held_band,
         n.max_power,
         n.transient,
+        if n.not_converged > 0 {
+            format!("; {} not converged within run.max_periods", n.not_converged)
+        } else {
+            String::new()
+        },
         if c.sampling_complete {
             ""
         } else {

@@ -4,7 +4,8 @@
 //! Panel (a): `v_inf` against the load (force `F`, or incline angle), the
 //! curve through every point of the characteristic, with the no-load
 //! speed, the stall force, the load of the largest output power and the
-//! ends of the curve (the slider runs away beyond) marked, the band of
+//! ends of the curve (the slider runs away beyond, or the run beyond did
+//! not converge within `run.max_periods`) marked, the band of
 //! loads that hold the slider still shaded, and the holding force at rest
 //! `+-mu_0 F_c` as reference lines. Panel (b): the output power `F v_inf`
 //! over the loads the drive works against (0 to the stall force), with its
@@ -137,6 +138,11 @@ pub fn figure(c: &Characteristic, scene: &Scene, name: &str) -> Result<Figure, P
             Mark::RunAwayLimit,
             "runs away beyond",
             marked(Marker::Cross, 4),
+        ),
+        (
+            Mark::UnsettledLimit,
+            "not converged beyond",
+            marked(Marker::Cross, 5),
         ),
     ];
     for (mark, label, look) in marks {

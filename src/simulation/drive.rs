@@ -5,12 +5,12 @@
 use super::{
     CertificateKind, Outcome, RunReport, SteadyStateCertificate, SteadyStateCheck, Unsettled,
 };
-use crate::analysis::certificate::{Verdict, certify};
+use crate::analysis::certificate::{CERTIFIED_REACH, Verdict, certify};
 use crate::analysis::error_estimate::{
     established_bound, estimate_errors, startup_error, v_inf_error,
 };
-use crate::analysis::{self, AnalysisOptions, StatsWanted, SteadyState, Transient};
-use crate::engine::{Event, PeriodEngine};
+use crate::analysis::{self, AnalysisOptions, Convergence, StatsWanted, SteadyState, Transient};
+use crate::engine::{Event, PeriodEngine, PeriodStart};
 use crate::error::Error;
 use crate::indicator::Indicator;
 use crate::motor::Motor;
@@ -82,6 +82,8 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
     // is simulated up to p_0.99 (on to convergence with
     // verify_steady_state). See the module docs.
     let mut rest_fixed_point = None;
+    // The covering's bounds on the certified limit's v_inf.
+    let mut v_inf_bounds = None;
     let fast = if engine.steady_state_from_transient() {
         None
     } else {
@@ -105,7 +107,10 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                     &mut certificate,
                 )?;
                 map_evaluations += engine.counters().periods - before;
-                certified.map(|steady| (steady, None))
+                certified.map(|(steady, bounds)| {
+                    v_inf_bounds = Some(bounds);
+                    (steady, None)
+                })
             }
             Some((steady, bound)) => {
                 rest_fixed_point = Some((steady.boundary_velocity, steady.v_inf));
@@ -113,6 +118,9 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                 let v_error = v_inf_error(&signal, &steady, bound);
                 options.stop_at_startup =
                     (!verify && steady.v_inf.abs() > v_error).then_some(steady.v_inf);
+                // The cross-check's own limit rests on a repetition, not on
+                // an extrapolation.
+                options.ratio_rule = !verify;
                 let transient = analysis::transient(&mut engine, &options, wanted, &mut event_log)?;
                 // Judge on what a run without verification sees: the
                 // periods up to p_0.99.
@@ -148,7 +156,10 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                         &mut certificate,
                     )?;
                     map_evaluations += engine.counters().periods - before;
-                    certified.map(|steady| (steady, Some(transient)))
+                    certified.map(|(steady, bounds)| {
+                        v_inf_bounds = Some(bounds);
+                        (steady, Some(transient))
+                    })
                 }
             }
             None => None,
@@ -158,45 +169,63 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
     let (steady, transient) = match fast {
         Some(found) => found,
         None => {
-            // The orbit from rest decides.
+            // The orbit from rest decides. A limit the contraction ratios
+            // extrapolated is taken only where the covering certifies it
+            // from the orbit's last point; otherwise the start-up runs on,
+            // from rest, until its boundary state repeats.
             options.stop_at_startup = None;
-            event_log = scene.outputs.events.then(EventLog::default);
-            trajectory = scene.outputs.trajectory.then(Trajectory::default);
-            let transient = analysis::transient(&mut engine, &options, wanted, &mut event_log)?;
-            if transient.run_away.is_some() || !transient.converged {
-                return Ok(unsettled(
-                    &engine,
-                    &signal,
-                    &requested,
-                    &transient,
-                    rest_fixed_point,
-                    (setup_time, clock.elapsed()),
-                ));
-            }
-            let before = engine.counters().periods;
-            let seed = transient.final_velocity;
-            let reach = transient.remaining.unwrap_or(0.0) + transient.v_inf_error.unwrap_or(0.0);
-            let steady = match analysis::fixed_point(&mut engine, seed) {
-                Ok((v, d, iterations, correction)) if (v - seed).abs() <= reach => {
-                    analysis::steady_state_at(
-                        &mut engine,
-                        v,
-                        (Some(d), iterations, correction),
-                        wanted,
-                        &mut trajectory,
-                    )?
+            let mut settled = None;
+            for ratio_rule in [!verify, false] {
+                options.ratio_rule = ratio_rule;
+                event_log = scene.outputs.events.then(EventLog::default);
+                trajectory = scene.outputs.trajectory.then(Trajectory::default);
+                let transient = analysis::transient(&mut engine, &options, wanted, &mut event_log)?;
+                if transient.run_away.is_some() || !transient.converged {
+                    return Ok(unsettled(
+                        &engine,
+                        &signal,
+                        &requested,
+                        &transient,
+                        rest_fixed_point,
+                        (setup_time, clock.elapsed()),
+                    ));
                 }
-                _ => analysis::steady_state_at(
+                let before = engine.counters().periods;
+                let steady = orbit_steady(&mut engine, &transient, wanted, &mut trajectory)?;
+                map_evaluations += engine.counters().periods - before;
+                if transient.converged_by != Some(Convergence::Ratio) {
+                    certificate.kind = CertificateKind::Orbit;
+                    settled = Some((steady, Some(transient)));
+                    break;
+                }
+                let Some(bound) = established_bound(&signal, &steady) else {
+                    continue;
+                };
+                let before = engine.counters().periods;
+                let certified = certified_limit(
                     &mut engine,
-                    seed,
-                    (None, 0, transient.remaining.unwrap_or(0.0)),
+                    motor,
+                    transient.final_velocity,
+                    (steady, bound),
                     wanted,
                     &mut trajectory,
-                )?,
-            };
-            map_evaluations += engine.counters().periods - before;
-            certificate.kind = CertificateKind::Orbit;
-            (steady, Some(transient))
+                    &mut certificate,
+                )?;
+                map_evaluations += engine.counters().periods - before;
+                // The certified orbit must also move the slider as the
+                // start-up does: where the fixed point sits on a change of
+                // the event structure, the two sides of it differ in v_inf.
+                if let Some((steady, bounds)) = certified.filter(|(steady, _)| {
+                    (steady.v_inf - transient.v_inf()).abs()
+                        <= transient.v_inf_error.unwrap_or(0.0)
+                            + v_inf_error(&signal, steady, CERTIFIED_REACH * bound)
+                }) {
+                    v_inf_bounds = Some(bounds);
+                    settled = Some((steady, Some(transient)));
+                    break;
+                }
+            }
+            settled.expect("the start-up without the ratio rule converges by repetition")
         }
     };
     if let Some(t) = transient.as_ref().filter(|t| t.run_away.is_some()) {
@@ -217,6 +246,12 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         &indicators,
         from_orbit,
     );
+    if let (Some((lo, hi)), Some(e)) = (v_inf_bounds, error.v_inf) {
+        // The limit's v_inf lies between the covering's ends' (also where
+        // it jumps with the boundary velocity); the estimate covers them.
+        let v = indicators.v_inf;
+        error.v_inf = Some(e.max(v - lo).max(hi - v));
+    }
     let startup_periods = transient
         .as_ref()
         .filter(|_| error.v_inf.is_none_or(|e| indicators.v_inf.abs() > e))
@@ -338,6 +373,10 @@ fn unsettled<E: PeriodEngine>(
     }
 }
 
+/// A certified steady state with the covering's bounds `(lo, hi)` on its
+/// `v_inf` (m/s).
+type Certified = (SteadyState, (f64, f64));
+
 /// Largest number of map evaluations a certificate may take before the
 /// orbit from rest decides.
 const CERTIFICATE_BUDGET: u32 = 256;
@@ -349,7 +388,8 @@ const CERTIFICATE_BUDGET: u32 = 256;
 /// certified in turn. `None` when no certificate is found within
 /// [`CERTIFICATE_BUDGET`] map evaluations or a nearer fixed point is not
 /// established: then the orbit from rest decides. Records the cost and the
-/// other fixed points found in `certificate`.
+/// other fixed points found in `certificate`; returns the certified steady
+/// state with the covering's bounds on its `v_inf`.
 fn certified_limit<E: PeriodEngine>(
     engine: &mut E,
     motor: &Motor,
@@ -358,10 +398,11 @@ fn certified_limit<E: PeriodEngine>(
     wanted: StatsWanted,
     trajectory: &mut Option<Trajectory>,
     certificate: &mut SteadyStateCertificate,
-) -> Result<Option<SteadyState>, Error> {
+) -> Result<Option<Certified>, Error> {
     let (mut from, mut steady, mut bound) = (from, steady, bound);
     let mut rejected: Vec<f64> = Vec::new();
     let mut spent = 0;
+    let earlier = certificate.evaluations;
     loop {
         let covering = certify(
             engine,
@@ -372,7 +413,7 @@ fn certified_limit<E: PeriodEngine>(
             CERTIFICATE_BUDGET.saturating_sub(spent),
         )?;
         spent += covering.evaluations;
-        certificate.evaluations = u64::from(spent);
+        certificate.evaluations = earlier + u64::from(spent);
         match covering.verdict {
             Verdict::Certified => {
                 certificate.kind = CertificateKind::Covering;
@@ -381,7 +422,10 @@ fn certified_limit<E: PeriodEngine>(
                     .iter()
                     .map(|w| (w - v).abs())
                     .min_by(f64::total_cmp);
-                return Ok(Some(steady));
+                let Some(bounds) = covering.v_inf_bounds else {
+                    return Ok(None);
+                };
+                return Ok(Some((steady, bounds)));
             }
             Verdict::Undecided => return Ok(None),
             Verdict::Nearer { near, far } => {
@@ -397,7 +441,10 @@ fn certified_limit<E: PeriodEngine>(
                 *trajectory = trajectory.as_ref().map(|_| Trajectory::default());
                 let next = analysis::steady_state_at(
                     engine,
-                    v,
+                    PeriodStart {
+                        velocity: v,
+                        mode: None,
+                    },
                     (Some(d), iterations, correction),
                     wanted,
                     trajectory,
@@ -410,4 +457,52 @@ fn certified_limit<E: PeriodEngine>(
             }
         }
     }
+}
+
+/// The steady state at the limit of a converged start-up: the fixed point
+/// searched from its last boundary velocity if it lies within the
+/// start-up's own bound, else the last boundary velocity itself.
+fn orbit_steady<E: PeriodEngine>(
+    engine: &mut E,
+    transient: &Transient,
+    wanted: StatsWanted,
+    trajectory: &mut Option<Trajectory>,
+) -> Result<SteadyState, Error> {
+    let seed = transient.final_velocity;
+    let reach = transient.remaining.unwrap_or(0.0) + transient.v_inf_error.unwrap_or(0.0);
+    *trajectory = trajectory.as_ref().map(|_| Trajectory::default());
+    // The orbit's own boundary state: the mode it ends a period in is part
+    // of it (a map evaluation from the same velocity may decide a
+    // zero-velocity start differently).
+    let start = |velocity| PeriodStart {
+        velocity,
+        mode: Some(transient.final_mode),
+    };
+    if transient.converged_by == Some(Convergence::Exact) {
+        return Ok(analysis::steady_state_at(
+            engine,
+            start(seed),
+            (None, 0, 0.0),
+            wanted,
+            trajectory,
+        )?);
+    }
+    Ok(match analysis::fixed_point(engine, seed) {
+        Ok((v, d, iterations, correction)) if (v - seed).abs() <= reach => {
+            analysis::steady_state_at(
+                engine,
+                start(v),
+                (Some(d), iterations, correction),
+                wanted,
+                trajectory,
+            )?
+        }
+        _ => analysis::steady_state_at(
+            engine,
+            start(seed),
+            (None, 0, transient.remaining.unwrap_or(0.0)),
+            wanted,
+            trajectory,
+        )?,
+    })
 }

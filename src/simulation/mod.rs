@@ -49,10 +49,10 @@
 //! its budget of map evaluations (or a nearer fixed point is not
 //! established), the orbit from rest decides: the start-up is simulated
 //! until its limit is established ([`analysis::transient`]: an exact
-//! repetition or a remaining distance bounded by the measured
-//! contraction), and the steady state is taken there (a fixed point
-//! searched from the orbit's end is used only if it lies within that
-//! bound). Without an established limit within `run.max_periods` the result
+//! repetition, a repetition within rounding in periods with a stick phase, or a
+//! remaining distance bounded by the measured contraction), and the
+//! steady state is taken there (a fixed point searched from the orbit's
+//! end is used only if it lies within that bound). Without an established limit within `run.max_periods` the result
 //! is [`Outcome::NotConverged`], with the bounds of 2.
 //!
 //! # Only what the scene asks for

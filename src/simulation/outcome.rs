@@ -45,8 +45,9 @@ pub enum CertificateKind {
     /// fixed point was covered by pieces proven free of fixed points.
     Covering,
     /// The orbit from rest was simulated until its own limit was
-    /// established (an exact repetition, or a remaining distance bounded by
-    /// the measured contraction).
+    /// established (an exact repetition, a repetition within rounding in
+    /// periods with a stick phase, or a remaining distance bounded by the measured
+    /// contraction).
     Orbit,
 }
 
