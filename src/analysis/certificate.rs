@@ -146,17 +146,19 @@ struct Friction {
 
 /// Largest number of acceleration evaluations one growth bound spends on
 /// sharpening its windows; past it the coarse bounds stand.
-const GROWTH_EVALUATIONS: u32 = 4096;
+const GROWTH_EVALUATIONS: u32 = 64;
 
 /// The growth bound `G_ab` of the module docs for the ends `lower` (`a`)
 /// and `upper` (`b`, `a < b`) of a piece, with event times uncertain by
-/// `eps`.
+/// `eps`. A bound below `enough` is returned as soon as one is found
+/// (the caller needs no sharper one).
 fn growth_bound(
     signal: &Signal,
     friction: Friction,
     lower: &Probe,
     upper: &Probe,
     eps: f64,
+    enough: f64,
 ) -> f64 {
     let period = signal.period();
     // The bound rests on the modes of the whole period; an engine that
@@ -182,46 +184,68 @@ fn growth_bound(
     }
     points.sort_by(f64::total_cmp);
     points.dedup();
-    let possible = |stretches: &[Stretch], p: f64, q: f64| {
-        // Modes a slider may have somewhere in [p, q]: those of the
-        // stretches that reach into [p - eps, q + eps].
-        let (mut stick, mut forward, mut backward) = (false, false, false);
-        for s in stretches {
-            if s.start - eps < q && s.end + eps > p {
-                match s.mode {
-                    Mode::Stick => stick = true,
-                    Mode::Slip(Direction::Forward) => forward = true,
-                    Mode::Slip(Direction::Backward) => backward = true,
-                }
-            }
-        }
-        (stick, forward, backward)
-    };
-    let mut budget = GROWTH_EVALUATIONS;
-    let mut total = 0.0;
-    let mut a_prev = signal.acceleration(0.0);
+    // The windows where a row of growth may apply, with the rows.
+    let mut windows = Vec::new();
+    let (mut lower_at, mut upper_at) = (0, 0);
     for w in points.windows(2) {
         let (p, q) = (w[0], w[1]);
-        let a_q = signal.acceleration(q.min(period * (1.0 - f64::EPSILON)));
-        let (l_stick, l_forward, _) = possible(&lower.stretches, p, q);
-        let (u_stick, _, u_backward) = possible(&upper.stretches, p, q);
+        let (l_stick, l_forward, _) = possible(&lower.stretches, &mut lower_at, (p, q), eps);
+        let (u_stick, _, u_backward) = possible(&upper.stretches, &mut upper_at, (p, q), eps);
         // Row "upper stuck, lower forward": a below, b not below.
         let rises = l_forward && (u_stick || u_backward);
         // Row "upper backward, lower stuck": a not above, b above.
         let falls = (l_stick || l_forward) && u_backward;
         if q > p && (rises || falls) {
-            total += window_growth(
+            windows.push((p, q, rises, falls));
+        }
+    }
+    // First without evaluating a_R: D' <= a_0 - a_d throughout. Only where
+    // that is not below `enough` are the windows sharpened.
+    let coarse: f64 = windows.iter().map(|w| w.1 - w.0).sum::<f64>() * (friction.a_0 - friction.a_d);
+    if coarse < enough {
+        return coarse;
+    }
+    let mut budget = GROWTH_EVALUATIONS;
+    let at_end = |t: f64| signal.acceleration(t.min(period * (1.0 - f64::EPSILON)));
+    windows
+        .iter()
+        .map(|&(p, q, rises, falls)| {
+            window_growth(
                 signal,
                 friction,
                 (p, q),
-                (a_prev, a_q),
+                (at_end(p), at_end(q)),
                 (rises, falls),
                 &mut budget,
-            );
-        }
-        a_prev = a_q;
+            )
+        })
+        .sum()
+}
+
+/// The modes `(stick, forward, backward)` a slider may have somewhere in
+/// `[p, q]`: those of the stretches that reach into `[p - eps, q + eps]`.
+/// `from` is a cursor into `stretches` for windows taken in increasing
+/// order: the first stretch that may still reach a window.
+fn possible(
+    stretches: &[Stretch],
+    from: &mut usize,
+    (p, q): (f64, f64),
+    eps: f64,
+) -> (bool, bool, bool) {
+    while *from < stretches.len() && stretches[*from].end + eps <= p {
+        *from += 1;
     }
-    total
+    let (mut stick, mut forward, mut backward) = (false, false, false);
+    for s in stretches[*from..].iter().take_while(|s| s.start - eps < q) {
+        if s.end + eps > p {
+            match s.mode {
+                Mode::Stick => stick = true,
+                Mode::Slip(Direction::Forward) => forward = true,
+                Mode::Slip(Direction::Backward) => backward = true,
+            }
+        }
+    }
+    (stick, forward, backward)
 }
 
 /// True if the stretches cover the period `[0, T]` without a gap.
@@ -287,10 +311,12 @@ pub(crate) const CERTIFIED_REACH: f64 = 2.0;
 /// What the covering found.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Verdict {
-    /// No fixed point between the start and `v* - bound`.
+    /// No fixed point between the start and `v* - 2 bound`, and a point at
+    /// `v* + 2 bound` that the map moves back.
     Certified,
     /// A fixed point lies between the velocities `near` and `far`, and none
-    /// between the start and `near`: it is nearer than `v*`.
+    /// between the start and `near`: it is nearer than `v*`. `near = far`
+    /// when the start itself is moved back beyond rounding.
     Nearer {
         /// The end towards the start (`g` moves it towards `v*`).
         near: f64,
@@ -329,16 +355,23 @@ pub(crate) fn certify<E: PeriodEngine>(
     bound: f64,
     budget: u32,
 ) -> Result<Covering, SimulationError> {
-    let s = if v_star > from {
+    // The orbit from rest moves from 0 towards its limit, so the direction
+    // is the sign of v*, whatever side of v* its last point `from` lies on
+    // within rounding.
+    let s = if v_star > 0.0 {
         1.0
-    } else if v_star < from || v_star < 0.0 {
+    } else if v_star < 0.0 {
         -1.0
-    } else if v_star > 0.0 {
-        1.0
-    } else {
-        // At rest, and the map leaves rest where it is.
+    } else if from == 0.0 {
+        // At rest, and the search found the map leaves rest where it is.
         return Ok(Covering {
             verdict: Verdict::Certified,
+            evaluations: 0,
+            v_inf_bounds: None,
+        });
+    } else {
+        return Ok(Covering {
+            verdict: Verdict::Undecided,
             evaluations: 0,
             v_inf_bounds: None,
         });
@@ -370,6 +403,18 @@ pub(crate) fn certify<E: PeriodEngine>(
         Ok((Verdict::Certified, Some((a.min(b), a.max(b)))))
     };
     if (target - from) * s <= 0.0 {
+        // The start lies within the reach of v*: it must not be moved back
+        // (then the map sends the interval from it to the closing point
+        // into itself).
+        let start = probe(engine, from)?;
+        evaluations += 1;
+        if s * (start.p - start.v) + start.error < 0.0 {
+            return Ok(Covering {
+                verdict: Verdict::Undecided,
+                evaluations,
+                v_inf_bounds: None,
+            });
+        }
         let (verdict, v_inf_bounds) = closes(engine, &mut evaluations, None)?;
         return Ok(Covering {
             verdict,
@@ -382,7 +427,10 @@ pub(crate) fn certify<E: PeriodEngine>(
         a_d: motor.a_d(),
         g_t: motor.g_t(),
     };
-    let eps = engine.event_time_uncertainty();
+    // Mode boundaries are widened by the engine's event-time uncertainty
+    // with a margin of 256 for what the root finder's exit on a small
+    // residual and the period's velocity error move a crossing.
+    let eps = 256.0 * engine.event_time_uncertainty();
     let mut left = probe(engine, from)?;
     evaluations += 1;
     // Progress of a probe towards v_star, and whether it is proven positive
@@ -417,7 +465,7 @@ pub(crate) fn certify<E: PeriodEngine>(
                 } else {
                     (right, &left)
                 };
-                g_right > growth_bound(engine.signal(), friction, lower, upper, eps)
+                g_right > growth_bound(engine.signal(), friction, lower, upper, eps, g_right)
             }
         };
         if free {
@@ -522,7 +570,7 @@ mod tests {
                     probe(&mut engine, a).unwrap(),
                     probe(&mut engine, b).unwrap(),
                 );
-                let g = growth_bound(&signal, friction, &pa, &pb, eps);
+                let g = growth_bound(&signal, friction, &pa, &pb, eps, 0.0);
                 assert!(g >= 0.0 && g.is_finite(), "piece {piece}: G = {g}");
                 positive += usize::from(g > 0.0);
                 for _ in 0..6 {
