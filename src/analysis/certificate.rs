@@ -201,7 +201,8 @@ fn growth_bound(
     }
     // First without evaluating a_R: D' <= a_0 - a_d throughout. Only where
     // that is not below `enough` are the windows sharpened.
-    let coarse: f64 = windows.iter().map(|w| w.1 - w.0).sum::<f64>() * (friction.a_0 - friction.a_d);
+    let coarse: f64 =
+        windows.iter().map(|w| w.1 - w.0).sum::<f64>() * (friction.a_0 - friction.a_d);
     if coarse < enough {
         return coarse;
     }

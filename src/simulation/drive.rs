@@ -427,9 +427,11 @@ fn certified_limit<E: PeriodEngine>(
                     .iter()
                     .map(|w| (w - v).abs())
                     .min_by(f64::total_cmp);
-                let Some(bounds) = covering.v_inf_bounds else {
-                    return Ok(None);
-                };
+                // At rest with a map that keeps it there, nothing bounds
+                // v_inf but the steady state itself.
+                let bounds = covering
+                    .v_inf_bounds
+                    .unwrap_or((steady.v_inf, steady.v_inf));
                 return Ok(Some((steady, bounds)));
             }
             Verdict::Undecided => return Ok(None),
