@@ -62,7 +62,8 @@ pub struct Transient {
 /// The test that established the limit of the start-up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Convergence {
-    /// The boundary state repeated exactly.
+    /// The boundary state repeated exactly (after one period, or in a
+    /// cycle of up to 64).
     Exact,
     /// It repeated within rounding in periods with a stick phase.
     Rounding,
@@ -140,6 +141,9 @@ impl Default for AnalysisOptions {
     }
 }
 
+/// Longest cycle of boundary states the start-up recognises as periodic.
+const CYCLE: usize = 64;
+
 /// Contraction ratios kept for the convergence test: the remaining
 /// distance is bounded with the largest of them.
 const RATIOS: usize = 3;
@@ -150,8 +154,10 @@ const RATIOS: usize = 3;
 ///
 /// Convergence is claimed only on evidence about the limit, never on the
 /// size of a change alone (a motion that has barely begun changes little):
-/// * the boundary state (velocity and mode) repeated exactly, so the orbit
-///   is periodic from there on; or
+/// * the boundary state (velocity and mode) repeated exactly, after one
+///   period or as a state seen again within the last 64 periods (a cycle
+///   of a few doubles), so the orbit is periodic from there on, its limit
+///   within the cycle's spread; or
 /// * it repeated within rounding in periods with a stick phase: in each
 ///   of the last two periods the mode repeated, the change `c` of the
 ///   boundary velocity is at most the rounding bound `r` of the period's
@@ -205,6 +211,8 @@ pub fn transient<E: PeriodEngine, O: Observer>(
     let mut boundary_velocities = Vec::new();
     let mut run_away = None;
     let mut converged_by = None;
+    let mut recent: std::collections::VecDeque<(u64, Mode)> =
+        std::collections::VecDeque::with_capacity(CYCLE);
     // The map derivative of the previous period, if its boundary state
     // repeated within rounding.
     let mut rounded_before: Option<f64> = None;
@@ -266,6 +274,27 @@ pub fn transient<E: PeriodEngine, O: Observer>(
         } else {
             rounded_before = None;
         }
+        // A state seen again within the last CYCLE periods: the computed
+        // orbit is periodic from there on (a cycle of a few doubles).
+        let state = (end.velocity.to_bits(), end.mode);
+        if let Some(back) = recent.iter().rev().position(|s| *s == state) {
+            let cycle = back + 1;
+            let spread = |xs: &[f64]| {
+                let tail = &xs[xs.len() - cycle..];
+                let lo = tail.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = tail.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                hi - lo
+            };
+            let reach = spread(&boundary_velocities);
+            remaining = Some(reach);
+            v_inf_error = Some(spread(&mean_velocities) + reach + tol);
+            converged_by = Some(Convergence::Exact);
+            break;
+        }
+        if recent.len() == CYCLE {
+            recent.pop_front();
+        }
+        recent.push_back(state);
         if let Some(before) = last_change {
             if ratios.len() == RATIOS {
                 ratios.remove(0);

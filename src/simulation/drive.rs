@@ -175,12 +175,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
             // from rest, until its boundary state repeats.
             options.stop_at_startup = None;
             let mut settled = None;
-            // Where a covering of the search's fixed point did not close,
-            // the map comes within rounding of a fixed point somewhere
-            // (a near-tangency): there the ratios would mislead, so the
-            // start-up runs to a repetition at once.
-            let covering_failed = certificate.evaluations > 0;
-            for ratio_rule in [!verify && !covering_failed, false] {
+            for ratio_rule in [!verify, false] {
                 options.ratio_rule = ratio_rule;
                 event_log = scene.outputs.events.then(EventLog::default);
                 trajectory = scene.outputs.trajectory.then(Trajectory::default);
