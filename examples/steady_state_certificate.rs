@@ -138,8 +138,70 @@ fn main() {
         .nth(1)
         .map(|a| a.parse().expect("SCENES: a whole number"))
         .unwrap_or(1000);
+    regressions();
     optima();
     if scenes > 0 {
         random_scenes(scenes);
     }
+}
+
+/// Median wall time (s) of `f` over `runs` runs.
+fn median_time(runs: usize, mut f: impl FnMut()) -> f64 {
+    let mut times: Vec<f64> = (0..runs)
+        .map(|_| {
+            let clock = std::time::Instant::now();
+            f();
+            clock.elapsed().as_secs_f64()
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[runs / 2]
+}
+
+/// The wall times of the three known cases the tests bound by work: a
+/// stuck orbit that alternates between neighbouring doubles
+/// (`tests/transient_limit.rs`), a pair of orbits next to a jump of the
+/// period map (`tests/steady_state_certificate.rs`), and the
+/// characteristic of the default motor without sliding friction
+/// (`tests/characteristic.rs`).
+fn regressions() {
+    let stalled = stickslip::Scene::from_toml_str(
+        "[motor]\nslider_mass = 0.0014\ncontact_force = 1.0\nmu_static = 0.1736\n\
+         mu_dynamic = 0.1568\nextra_acceleration = -30.857826952979305\n\
+         [signal]\nkind = \"fourier\"\nstroke = 25e-6\nkappa = 0.2\nharmonics = 2\n\
+         sigma = false\n[run]\nverify_steady_state = true\n\
+         [outputs]\nindicators = [\"v_inf\", \"startup_time\"]\n",
+        "the stalled scene",
+    )
+    .expect("a valid scene");
+    let t = median_time(9, || {
+        stickslip::simulate(&stalled).expect("runs");
+    });
+    println!(
+        "stuck orbit alternating between doubles, verified: {:.3} ms (median of 9)",
+        t * 1e3
+    );
+    let mut pair = stickslip::Scene {
+        signal: stickslip::SignalSpec::fourier(25e-6, 9.0, 4, true),
+        ..stickslip::Scene::default()
+    };
+    pair.motor.extra_acceleration = -46.573362;
+    let t = median_time(9, || {
+        stickslip::simulate(&pair).expect("runs");
+    });
+    println!(
+        "pair of orbits next to a jump of the map: {:.3} ms (median of 9)",
+        t * 1e3
+    );
+    let mut no_sliding = stickslip::Scene::default();
+    no_sliding.motor.mu_dynamic = 0.0;
+    let options = stickslip::characteristic::Options::default();
+    let mut evaluations = 0;
+    let t = median_time(3, || {
+        let c = stickslip::characteristic::characteristic(&no_sliding, &options).expect("runs");
+        evaluations = c.counts.total() - c.counts.transient;
+    });
+    println!(
+        "characteristic with mu_dynamic = 0: {t:.2} s (median of 3), {evaluations} v_inf evaluations (all but the start-up run)"
+    );
 }

@@ -148,7 +148,18 @@ pub(crate) fn estimate_errors(
     let Some(dvel) = velocity_error else {
         return ErrorEstimate::default();
     };
-    let dv = v_inf_error(signal, steady, dvel);
+    let mut dv = v_inf_error(signal, steady, dvel);
+    if from_orbit && let Some(t) = transient.filter(|t| t.converged) {
+        // Where the start-up decided, its own limit is the motion from
+        // rest: the steady period simulated again must lie within the
+        // estimate of it, in v_inf itself (not a velocity weighted by the
+        // slip fraction), also where a decision within rounding sends the
+        // period simulated again to the other side of a change of the
+        // event structure.
+        dv = dv.max(
+            (t.v_inf() - steady.v_inf).abs() + t.v_inf_error.unwrap_or(0.0) + rounding_x / period,
+        );
+    }
     let spread = stats.v_max - stats.v_min;
     let sliding = stats.sliding_distance;
     let d_sliding = dvel * stats.slip_time + rounding_x;
