@@ -102,8 +102,12 @@ pub(crate) fn startup_error(
 ///   ([`engine_bound`]: event-time brackets times the jump in slider
 ///   acceleration at each event, zero-velocity decisions, the fixed
 ///   point's residual, all carried through `/ (1 - P')`), turned into a
-///   bound on the mean velocity by [`v_inf_error`]. Where the start-up
-///   decided the steady state (or the engine states no bound), its own
+///   bound on the mean velocity by [`v_inf_error`]; doubled where the
+///   covering certified the fixed point (`covered`: the limit from rest is
+///   proven within twice the bound, `super::certificate::CERTIFIED_REACH`).
+///   Where the start-up decided the steady state (`from_orbit`), the
+///   estimate also covers the distance of its limit's `v_inf` to the
+///   steady period's. Where the engine states no bound, the start-up's own
 ///   estimate is used instead: the distance of its limit to the steady
 ///   state (or the last fixed-point correction) plus its remaining-distance
 ///   bound. No bound is given through a grazing;
@@ -115,7 +119,7 @@ pub(crate) fn estimate_errors(
     steady: &SteadyState,
     transient: Option<&Transient>,
     ind: &SteadyIndicators,
-    from_orbit: bool,
+    (from_orbit, covered): (bool, bool),
 ) -> ErrorEstimate {
     let period = signal.period();
     let stats = &steady.stats;
@@ -136,9 +140,9 @@ pub(crate) fn estimate_errors(
         // on the data there, so no bound holds.
         Some(u) if !u.is_finite() => None,
         Some(_) => match engine_bound(signal, steady) {
-            // A certified fixed point: the limit from rest lies within the
-            // covering's reach of it.
-            Some(b) if !from_orbit => Some(super::certificate::CERTIFIED_REACH * b),
+            // A fixed point certified by the covering: the limit from rest
+            // lies within the covering's reach of it.
+            Some(b) if covered => Some(super::certificate::CERTIFIED_REACH * b),
             Some(b) => Some(b),
             None if from_orbit => transient.filter(|t| t.converged).map(from_transient),
             None => None,

@@ -244,7 +244,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         &steady,
         transient.as_ref(),
         &indicators,
-        from_orbit,
+        (from_orbit, certificate.kind == CertificateKind::Covering),
     );
     if let (Some((lo, hi)), Some(e)) = (v_inf_bounds, error.v_inf) {
         // The limit's v_inf lies between the covering's ends' (also where
