@@ -2,7 +2,7 @@
 //! 10^5-row CSV (50 000 strokes × sigma on/off, one failed case in 1000 and
 //! one run-away in 1000), plotted as `v_inf` against `stroke` on log axes
 //! with one series per `sigma`, to SVG, PDF and PNG through
-//! `cli::main_with` (the binary's code path). Issue 11 asks for under 2 s.
+//! `cli::main_with` (the binary's code path); the goal is under 2 s.
 //!
 //! `cargo run --release --example plot_bench [ROWS]`
 

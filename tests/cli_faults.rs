@@ -55,7 +55,7 @@ indicators = ["v_inf"]
 events = true
 "#;
 
-/// The scene the CLI fuzzer found running past 20 s (issue 16.9).
+/// The scene the CLI fuzzer found running past 20 s.
 const SLOW_SCENE: &str = r#"
 [motor]
 slider_mass = 0.1257
@@ -70,7 +70,7 @@ stroke = 2.29e-7
 "#;
 
 #[test]
-fn closed_pipe_16_6_ends_quietly() {
+fn a_closed_output_pipe_ends_the_command_quietly() {
     let dir = temp_dir("pipe");
     let scene = write(&dir, "long_log.toml", LONG_LOG);
     let mut child = stickslip()
@@ -92,7 +92,7 @@ fn closed_pipe_16_6_ends_quietly() {
 
 #[cfg(target_os = "linux")]
 #[test]
-fn full_disk_16_6_is_a_one_line_error() {
+fn a_full_disk_is_a_one_line_error() {
     let full = std::fs::OpenOptions::new()
         .write(true)
         .open("/dev/full")
@@ -112,7 +112,7 @@ fn full_disk_16_6_is_a_one_line_error() {
 }
 
 #[test]
-fn output_over_input_16_7_is_refused() {
+fn an_output_over_an_input_is_refused() {
     let dir = temp_dir("overwrite");
     let text = std::fs::read_to_string(
         Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/paper_default.toml"),
@@ -150,7 +150,7 @@ fn output_over_input_16_7_is_refused() {
 
 #[cfg(target_os = "linux")]
 #[test]
-fn input_size_16_8_dev_zero_is_refused() {
+fn input_size_dev_zero_is_refused() {
     let clock = Instant::now();
     let o = run(&["run", "/dev/zero"]);
     assert_eq!(o.status.code(), Some(1));
@@ -163,7 +163,7 @@ fn input_size_16_8_dev_zero_is_refused() {
 }
 
 #[test]
-fn input_size_16_8_fifty_megabytes_of_newlines_refused_with_size() {
+fn input_size_fifty_megabytes_of_newlines_refused_with_size() {
     let dir = temp_dir("size");
     let scene = dir.join("newlines.toml");
     std::fs::write(&scene, vec![b'\n'; 50 << 20]).unwrap();
@@ -175,7 +175,7 @@ fn input_size_16_8_fifty_megabytes_of_newlines_refused_with_size() {
 }
 
 #[test]
-fn work_limit_16_9_check_with_absurd_steps_is_refused() {
+fn work_limit_check_with_absurd_steps_is_refused() {
     for steps in ["4294967295", "1000000000"] {
         let clock = Instant::now();
         let o = run(&["check", "--steps", steps]);
@@ -192,7 +192,7 @@ fn work_limit_16_9_check_with_absurd_steps_is_refused() {
 }
 
 #[test]
-fn work_limit_8_9_fixed_engine_with_absurd_steps_is_refused() {
+fn work_limit_fixed_engine_with_absurd_steps_is_refused() {
     let dir = temp_dir("fixed");
     let scene = write(
         &dir,
@@ -212,7 +212,7 @@ fn work_limit_8_9_fixed_engine_with_absurd_steps_is_refused() {
 }
 
 #[test]
-fn time_limit_16_9_slow_scene_stops_at_the_budget() {
+fn time_limit_slow_scene_stops_at_the_budget() {
     let dir = temp_dir("budget");
     let scene = write(&dir, "slow.toml", SLOW_SCENE);
     let clock = Instant::now();
@@ -251,7 +251,7 @@ fn time_limit_16_9_slow_scene_stops_at_the_budget() {
 }
 
 #[test]
-fn plausibility_warnings_8_7_on_stderr_and_the_run_goes_on() {
+fn plausibility_warnings_on_stderr_and_the_run_goes_on() {
     let dir = temp_dir("warnings");
     let scene = write(
         &dir,
@@ -287,7 +287,7 @@ fn plausibility_warnings_8_7_on_stderr_and_the_run_goes_on() {
 }
 
 #[test]
-fn usage_errors_16_10_say_what_was_wrong_and_exit_2() {
+fn usage_errors_say_what_was_wrong_and_exit_2() {
     for (args, first_line) in [
         (
             &["run", "--bogus"][..],
@@ -316,11 +316,11 @@ fn usage_errors_16_10_say_what_was_wrong_and_exit_2() {
     }
 }
 
-/// Issue 16.9: a long run on an interactive terminal says how far it got,
+/// A long run on an interactive terminal says how far it got,
 /// every 2 s, on standard error. `script` (util-linux) gives the run a
 /// terminal; without one (as in every other test) nothing is printed.
 #[test]
-fn progress_16_9_a_long_run_on_a_terminal_reports_progress() {
+fn progress_a_long_run_on_a_terminal_reports_progress() {
     let dir = temp_dir("progress");
     let scene = write(&dir, "slow.toml", SLOW_SCENE);
     let command = format!(

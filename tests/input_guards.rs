@@ -22,7 +22,7 @@ fn temp_file(name: &str, bytes: &[u8]) -> PathBuf {
     path
 }
 
-/// The scene the CLI fuzzer found running past 20 s (issue 16.9): a
+/// The scene the CLI fuzzer found running past 20 s: a
 /// 966 MHz signal (stroke 0.23 um, kappa 3.7e7) whose slip-slip start-up
 /// needs millions of periods of 42 harmonics each.
 const SLOW_SCENE: &str = r#"
@@ -39,7 +39,7 @@ stroke = 2.29e-7
 "#;
 
 #[test]
-fn plausibility_warnings_8_7_stroke_meant_as_micrometres() {
+fn plausibility_warnings_stroke_meant_as_micrometres() {
     let mut scene = Scene::default();
     // The paper's scene is plausible through and through.
     assert_eq!(scene.warnings(), vec![]);
@@ -54,7 +54,7 @@ fn plausibility_warnings_8_7_stroke_meant_as_micrometres() {
 }
 
 #[test]
-fn plausibility_warnings_8_7_frequency_mass_force_friction() {
+fn plausibility_warnings_frequency_mass_force_friction() {
     let scene = parse(
         r#"
 [motor]
@@ -100,7 +100,7 @@ phases = [0.0]
 }
 
 #[test]
-fn plausibility_warnings_8_7_slow_scene_says_why() {
+fn plausibility_warnings_slow_scene_says_why() {
     let scene = parse(SLOW_SCENE).unwrap();
     let warnings: Vec<String> = scene.warnings().iter().map(|w| w.to_string()).collect();
     assert_eq!(warnings.len(), 3, "{warnings:#?}");
@@ -116,7 +116,7 @@ fn plausibility_warnings_8_7_slow_scene_says_why() {
 }
 
 #[test]
-fn work_limit_8_9_absurd_fixed_step_count_refused() {
+fn work_limit_absurd_fixed_step_count_refused() {
     let mut scene = Scene::default();
     scene.run.engine = EngineKind::Fixed;
     scene.run.steps_per_harmonic = u32::MAX;
@@ -136,7 +136,7 @@ fn work_limit_8_9_absurd_fixed_step_count_refused() {
 }
 
 #[test]
-fn time_limit_8_9_stops_the_slow_scene_and_names_the_period() {
+fn time_limit_stops_the_slow_scene_and_names_the_period() {
     let mut scene = parse(SLOW_SCENE).unwrap();
     scene.run.time_limit_s = Some(0.5);
     let clock = Instant::now();
@@ -156,7 +156,7 @@ fn time_limit_8_9_stops_the_slow_scene_and_names_the_period() {
 }
 
 #[test]
-fn time_limit_8_9_field_is_read_validated_and_written() {
+fn time_limit_field_is_read_validated_and_written() {
     let scene = parse("[run]\ntime_limit_s = 2.5\n").unwrap();
     assert_eq!(scene.run.time_limit_s, Some(2.5));
     assert_eq!(parse(&scene.to_toml()).unwrap(), scene);
@@ -175,7 +175,7 @@ fn time_limit_8_9_field_is_read_validated_and_written() {
 }
 
 #[test]
-fn event_log_8_9_is_bounded_and_says_how_much_it_left_out() {
+fn event_log_is_bounded_and_says_how_much_it_left_out() {
     // kappa = 1e6: slip-slip, two reversals a period, and a start-up far
     // longer than the 60 000 periods allowed: 120 000 events.
     let mut scene = parse(
@@ -211,7 +211,7 @@ events = true
 }
 
 #[test]
-fn messages_8_10_tiny_mass_is_blamed_on_the_mass() {
+fn messages_tiny_mass_is_blamed_on_the_mass() {
     let e = parse(
         "[motor]\nslider_mass = 5e-324\ncontact_force = 1\nmu_static = 0.2\nmu_dynamic = 0.1\n",
     )
@@ -234,7 +234,7 @@ fn messages_8_10_tiny_mass_is_blamed_on_the_mass() {
 }
 
 #[test]
-fn messages_8_10_numbers_print_in_scientific_notation() {
+fn messages_numbers_print_in_scientific_notation() {
     for (x, shown) in [
         (5e-324, "5e-324"),
         (1e300, "1e300"),
@@ -260,7 +260,7 @@ fn messages_8_10_numbers_print_in_scientific_notation() {
 }
 
 #[test]
-fn messages_8_10_toml_syntax_error_names_the_key_and_shows_the_line() {
+fn messages_toml_syntax_error_names_the_key_and_shows_the_line() {
     let e = parse("[motor]\nslider_mass = = 1\n")
         .unwrap_err()
         .to_string();
@@ -278,7 +278,7 @@ fn messages_8_10_toml_syntax_error_names_the_key_and_shows_the_line() {
 }
 
 #[test]
-fn input_size_16_8_large_file_refused_with_its_size() {
+fn input_size_large_file_refused_with_its_size() {
     // Newlines only: valid TOML (an empty scene) at any length.
     let limit = usize::try_from(MAX_INPUT_BYTES).unwrap();
     let at_limit = temp_file("at_limit.toml", &vec![b'\n'; limit]);
@@ -300,7 +300,7 @@ fn input_size_16_8_large_file_refused_with_its_size() {
 
 #[cfg(target_os = "linux")]
 #[test]
-fn input_size_16_8_endless_stream_refused() {
+fn input_size_endless_stream_refused() {
     let clock = Instant::now();
     let e = read_input(std::path::Path::new("/dev/zero")).unwrap_err();
     assert_eq!(e.kind(), std::io::ErrorKind::InvalidData);

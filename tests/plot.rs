@@ -80,7 +80,7 @@ fn figures_are_written_beside_each_other() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Issue 11: figure 8 draws the scene it is given. Two scenes that differ
+/// Figure 8 draws the scene it is given. Two scenes that differ
 /// only in the signal's harmonics give different figures and data, and the
 /// CSV's period is the given scene's.
 #[test]

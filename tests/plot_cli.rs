@@ -316,7 +316,7 @@ fn bad_arguments_are_one_line_and_create_nothing() {
     std::fs::remove_dir_all(&d).unwrap();
 }
 
-/// Issue 11: a regime column is optional, and a column that is empty in a
+/// A regime column is optional, and a column that is empty in a
 /// row without failure or regime is drawn as "no value".
 #[test]
 fn a_sweep_without_regime_or_failure_columns_plots() {

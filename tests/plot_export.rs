@@ -1,4 +1,4 @@
-//! Issue 11 acceptance, print-ready files: the PDF of each preset is one
+//! Print-ready files: the PDF of each preset is one
 //! page of the preset's width (read with lopdf, an independent PDF
 //! parser), its text set in the embedded DejaVu Sans and its producer the
 //! program version; the PNG has the pixel size `width / 25.4 in × dpi`;

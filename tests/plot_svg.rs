@@ -1,4 +1,4 @@
-//! Issue 11 acceptance, read from the SVG text of every figure family in
+//! Read from the SVG text of every figure family in
 //! every preset: the smallest text at the printed size is at least 7 pt;
 //! nothing is drawn in the background colour (white) or invisibly; no two
 //! labelled series share both colour-free attributes (dash pattern and

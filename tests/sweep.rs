@@ -56,7 +56,7 @@ fn rows_without_timing(path: &Path) -> Vec<Vec<(String, String)>> {
         .collect()
 }
 
-/// Issue 4: "A sweep split into 3 shards and merged equals the unsharded
+/// "A sweep split into 3 shards and merged equals the unsharded
 /// sweep row for row" — byte for byte without timing, every column but the
 /// wall time with it, in CSV and JSON lines.
 #[test]

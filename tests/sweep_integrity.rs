@@ -1,7 +1,7 @@
 //! Sweeps lose nothing and never serve stale rows: resume keyed by the
 //! resolved scene and the program version, SIGINT/SIGTERM with every
 //! finished row on disk, one writer per output, merges that refuse rather
-//! than guess, and the regressions of issue 16.
+//! than guess.
 
 mod common;
 
@@ -334,7 +334,7 @@ fn a_refused_merge_leaves_every_input_intact() {
     assert_eq!(rows(&out), 6);
 }
 
-/// Issue 16: a `case` of 1000000000 or 18446744073709551615 made merge
+/// A `case` of 1000000000 or 18446744073709551615 made merge
 /// allocate by case index. Cases are keys: such a row is refused (no sweep
 /// has that many cases) at once, and a real gap of ten million cases is
 /// counted, not listed.
@@ -389,7 +389,7 @@ fn issue_16_merge_of_huge_case_indices_does_not_allocate() {
     );
 }
 
-/// Issue 16: a 10^7-case grid aborted at 3.9 GiB. The grid is made case by
+/// A 10^7-case grid aborted at 3.9 GiB. The grid is made case by
 /// case: loading it and running a shard of five cases fits in 1 GiB of
 /// address space and a few seconds.
 #[test]
@@ -439,7 +439,7 @@ fn issue_16_a_ten_million_case_grid_runs_a_shard_in_bounded_memory() {
     );
 }
 
-/// Issue 16: two sweeps on one output lost rows. The second is refused
+/// Two sweeps on one output lost rows. The second is refused
 /// while the first runs; the first completes every row. A lock file left
 /// by a process that is gone does not block.
 #[test]
@@ -480,7 +480,7 @@ fn issue_16_two_sweeps_on_one_output_refuse_the_second() {
     assert!(!lock.exists());
 }
 
-/// Issue 16: a JSON-lines sweep could not resume from its own output ("row
+/// A JSON-lines sweep could not resume from its own output ("row
 /// of case 0 has another level"). Values read back bit-identical, so the
 /// rerun keeps the row.
 #[test]
@@ -503,7 +503,7 @@ fn issue_16_a_jsonl_sweep_resumes_from_its_own_output() {
     assert_eq!(fs::read_to_string(&out).unwrap(), text);
 }
 
-/// Issue 16: merge copied NaN cells. A cell a sweep cannot write is
+/// Merge copied NaN cells. A cell a sweep cannot write is
 /// refused, naming the file, line and column; nothing is written.
 #[test]
 fn issue_16_merge_refuses_nan_cells() {
@@ -572,7 +572,7 @@ fn issue_16_merge_refuses_nan_cells() {
     assert!(!out.exists());
 }
 
-/// Issue 16: `sweep -j 4096` hung on a two-case sweep. Workers are capped
+/// `sweep -j 4096` hung on a two-case sweep. Workers are capped
 /// at the cases and the CPUs, and the pool is local: the command runs
 /// in-process several times with different `-j` (a global pool can be
 /// built only once).

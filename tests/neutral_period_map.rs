@@ -1,5 +1,5 @@
-//! Issue 15: `v_inf` is the motion from rest, also when the period map is
-//! (nearly) neutral. The three reproducers of the issue (tests/data/issue15)
+//! `v_inf` is the motion from rest, also when the period map is
+//! (nearly) neutral. The three reproducers (tests/data/neutral_map)
 //! give the motion from rest or a `not_converged` result, never the period
 //! map's unestablished "fixed point"; a map with several fixed points gives
 //! the one the orbit from rest reaches; and random scenes with
@@ -18,7 +18,10 @@ use stickslip::SimulationError;
 use stickslip::{Motor, MotorParams, Scene, Signal};
 
 fn reproducer(name: &str) -> Scene {
-    let path = format!("{}/tests/data/issue15/{name}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/tests/data/neutral_map/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
     Scene::from_path(std::path::Path::new(&path)).expect("reproducer scene present and valid")
 }
 
@@ -37,7 +40,7 @@ fn reachable(scene: &Scene, periods: u64) -> f64 {
 /// numbers were 87.39 m/s and 0.00741 m/s; the slider, sliding without
 /// friction from rest, cannot get beyond `g_t t` (about 1e-303 m/s here).
 #[test]
-fn issue15_neutral_map_gives_the_motion_from_rest() {
+fn neutral_map_gives_the_motion_from_rest() {
     for name in ["neutral_map_extreme.toml", "neutral_map_moderate.toml"] {
         let scene = reproducer(name);
         let limit = reachable(&scene, scene.run.max_periods);
@@ -70,7 +73,7 @@ fn issue15_neutral_map_gives_the_motion_from_rest() {
 /// at most `(a_d + |g_t|) t`, far from any limit: not converged, with the
 /// last `v_p` inside that reach and the periods all used.
 #[test]
-fn issue15_barely_begun_start_up_is_not_converged() {
+fn barely_begun_start_up_is_not_converged() {
     let scene = reproducer("tiny_friction_fast_rod.toml");
     let limit = reachable(&scene, scene.run.max_periods);
     let outcome = stickslip::simulate(&scene).unwrap();
