@@ -145,7 +145,13 @@ fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled, verify: bool) {
     m.insert("f0".into(), number(1.0 / u.period));
     m.insert("f_max".into(), option_number(u.f_max));
     m.insert("periods_simulated".into(), json!(u.periods_simulated));
-    m.insert("steady_state_certificate".into(), Value::Null);
+    m.insert(
+        "steady_state_certificate".into(),
+        match u.certificate_evaluations {
+            Some(_) => json!("covering"),
+            None => Value::Null,
+        },
+    );
     m.insert("other_fixed_point_distance".into(), Value::Null);
     m.insert("events".into(), Value::Null);
     m.insert("events_per_steady_period".into(), Value::Null);
@@ -163,7 +169,7 @@ fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled, verify: bool) {
             "root_iterations": u.work.root_iterations,
             "fixed_point_iterations": Value::Null,
             "map_evaluations": Value::Null,
-            "certificate_evaluations": Value::Null,
+            "certificate_evaluations": u.certificate_evaluations,
         }),
     );
 }
@@ -326,15 +332,33 @@ pub fn to_text(outcome: &Outcome) -> String {
         Outcome::RunAway { direction, state } => {
             let mut out = String::new();
             signal_line(&mut out, state.period, state.f_max);
-            let _ = writeln!(
-                out,
-                "outcome: run-away ({}): no periodic steady state; after {} periods the slider \
-                 slides at {} m/s outside the rod's velocity range, without any event, and keeps \
-                 accelerating (motor.extra_acceleration exceeds what sliding friction can hold)",
-                direction_name(*direction),
-                state.periods_simulated,
-                format_with_error(state.final_velocity, None),
-            );
+            match state.certificate_evaluations {
+                None => {
+                    let _ = writeln!(
+                        out,
+                        "outcome: run-away ({}): no periodic steady state; after {} periods the \
+                         slider slides at {} m/s outside the rod's velocity range, without any \
+                         event, and keeps accelerating (motor.extra_acceleration exceeds what \
+                         sliding friction can hold)",
+                        direction_name(*direction),
+                        state.periods_simulated,
+                        format_with_error(state.final_velocity, None),
+                    );
+                }
+                Some(evaluations) => {
+                    let _ = writeln!(
+                        out,
+                        "outcome: run-away ({}): no periodic steady state; proven by a covering \
+                         of {} map evaluations: no fixed point between rest and the rod's \
+                         extreme velocity, beyond which the slider slides without any event and \
+                         only gains speed (motor.extra_acceleration exceeds what sliding \
+                         friction can hold); a slider starting a period there ends it at {} m/s",
+                        direction_name(*direction),
+                        evaluations,
+                        format_with_error(state.final_velocity, None),
+                    );
+                }
+            }
             unsettled_text(&mut out, state, outcome.times());
             out
         }

@@ -170,3 +170,80 @@ fn a_pair_of_orbits_next_to_a_jump_of_the_map_is_reported_as_the_motion_from_res
         r.map_evaluations
     );
 }
+
+/// The default scene without sliding friction (`mu_dynamic = 0`) under a
+/// small pulling load (`g_t = -0.0104 m/s^2`): a slider that slips feels
+/// only the load, so it drifts by `g_t T` per period (`P(v) = v + g_t T`,
+/// docs/model.md section 1) until it meets the rod where the rod's
+/// velocity is lowest (`a_R = 0` there, inside the stick band), sticks and
+/// is carried: the fixed point lies in a band of a few 1e-5 m/s that the
+/// search from rest steps over, finding the map moving every velocity it
+/// tries. The covering from rest finds it, within its budget of 256 map
+/// evaluations, and it is the limit the motion from rest reaches after
+/// about 9e5 periods.
+#[test]
+fn a_slider_without_sliding_friction_is_caught_where_the_motion_from_rest_ends() {
+    let mut scene = stickslip::Scene::default();
+    scene.motor.mu_dynamic = 0.0;
+    scene.motor.extra_acceleration = -0.0104;
+    let c = cases::Comparison::of(&scene);
+    assert_eq!(c.strict_verdict(), Verdict::Agrees, "{}", c.describe());
+    let rest = c.rest.expect("the motion from rest settles");
+    assert!(rest.periods > 500_000, "{rest:?}");
+    let r = stickslip::run(&scene).expect("a steady state");
+    assert_eq!(r.certificate.kind, stickslip::CertificateKind::Covering);
+    assert!(r.certificate.evaluations <= 2 * 256, "{:?}", r.certificate);
+    // Caught at the rod's lowest velocity, released a little above it.
+    let motor = stickslip::Motor::new(scene.motor).unwrap();
+    let signal = stickslip::Signal::build(&scene.signal, &motor).unwrap();
+    let lowest = signal.velocity_range().0;
+    let v = r.indicators.v_inf;
+    assert!(
+        v > lowest && v - lowest < 1e-4,
+        "v_inf {v}, min v_R {lowest}"
+    );
+}
+
+/// The same slider under a slightly larger pulling load
+/// (`g_t = -0.011 m/s^2`) is no longer caught: it passes the rod's lowest
+/// velocity and slides on, below the rod, gaining speed. The covering from
+/// rest to the rod's lowest velocity proves it without simulating the
+/// start-up (no fixed point between rest and there, and
+/// `P(v) = v + g_t T < v` below it); the start-up from rest, simulated
+/// with `run.verify_steady_state`, runs away in the same direction.
+#[test]
+fn a_run_away_proven_by_the_covering_is_the_one_the_start_up_reaches() {
+    let mut scene = stickslip::Scene::default();
+    scene.motor.mu_dynamic = 0.0;
+    scene.motor.extra_acceleration = -0.011;
+    scene.outputs.indicators = vec![stickslip::Indicator::VInf];
+    let proven = stickslip::simulate(&scene).expect("runs");
+    let stickslip::Outcome::RunAway { direction, state } = &proven else {
+        panic!("not a run-away: {proven:?}");
+    };
+    assert_eq!(*direction, stickslip::Direction::Backward);
+    assert_eq!(state.periods_simulated, 0);
+    let evaluations = state.certificate_evaluations.expect("proven by a covering");
+    assert!(evaluations <= 256, "{evaluations}");
+    let json = stickslip::to_json(&proven, &scene);
+    assert_eq!(json["steady_state_certificate"], "covering");
+    assert_eq!(json["work"]["certificate_evaluations"], evaluations);
+
+    scene.run.verify_steady_state = true;
+    let simulated = stickslip::simulate(&scene).expect("runs");
+    let stickslip::Outcome::RunAway { direction, state } = &simulated else {
+        panic!("the start-up does not run away: {simulated:?}");
+    };
+    assert_eq!(*direction, stickslip::Direction::Backward);
+    assert!(state.periods_simulated > 100_000, "{state:?}");
+    assert_eq!(state.certificate_evaluations, None);
+    assert!(state.final_velocity < signal_lowest(&scene));
+}
+
+fn signal_lowest(scene: &stickslip::Scene) -> f64 {
+    let motor = stickslip::Motor::new(scene.motor).unwrap();
+    stickslip::Signal::build(&scene.signal, &motor)
+        .unwrap()
+        .velocity_range()
+        .0
+}

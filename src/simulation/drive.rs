@@ -10,8 +10,9 @@ use crate::analysis::error_estimate::{
     established_bound, estimate_errors, startup_error, v_inf_error,
 };
 use crate::analysis::{self, AnalysisOptions, Convergence, StatsWanted, SteadyState, Transient};
+use crate::engine::Direction;
 use crate::engine::{Event, PeriodEngine, PeriodStart};
-use crate::error::Error;
+use crate::error::{Error, SimulationError};
 use crate::indicator::Indicator;
 use crate::motor::Motor;
 use crate::observer::{EventLog, Trajectory};
@@ -88,19 +89,54 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         None
     } else {
         let before = engine.counters().periods;
-        let found = analysis::steady_state(&mut engine, 0.0, wanted, &mut trajectory);
+        let found = match analysis::steady_state(&mut engine, 0.0, wanted, &mut trajectory) {
+            Ok(steady) => Some((steady, 0.0)),
+            Err(SimulationError::NoSteadyState { direction, .. }) => {
+                let growing = direction == "growing";
+                match covering_search(&mut engine, motor, growing, wanted, &mut trajectory)? {
+                    Search::Found(steady, free_to, evaluations) => {
+                        certificate.evaluations += evaluations;
+                        Some((steady, free_to))
+                    }
+                    Search::RunAway(final_velocity, evaluations) if !needs_startup => {
+                        let state = Unsettled {
+                            period: signal.period(),
+                            f_max: signal.f_max(),
+                            requested: requested.to_vec(),
+                            periods_simulated: 0,
+                            last_v_p: None,
+                            final_velocity,
+                            v_inf_bounds: (None, None),
+                            work: engine.counters(),
+                            certificate_evaluations: Some(evaluations),
+                            setup_time,
+                            simulation_time: clock.elapsed(),
+                            wall_time: setup_time + clock.elapsed(),
+                        };
+                        let direction = if growing {
+                            Direction::Forward
+                        } else {
+                            Direction::Backward
+                        };
+                        return Ok(Outcome::RunAway { direction, state });
+                    }
+                    Search::RunAway(..) | Search::Nothing => None,
+                }
+            }
+            Err(_) => None,
+        };
         map_evaluations += engine.counters().periods - before;
-        let established = found
-            .ok()
-            .and_then(|steady| established_bound(&signal, &steady).map(|b| (steady, b)));
+        let established = found.and_then(|(steady, free_to)| {
+            established_bound(&signal, &steady).map(|b| (steady, b, free_to))
+        });
         match established {
-            Some((steady, bound)) if !needs_startup => {
+            Some((steady, bound, free_to)) if !needs_startup => {
                 rest_fixed_point = Some((steady.boundary_velocity, steady.v_inf));
                 let before = engine.counters().periods;
                 let certified = certified_limit(
                     &mut engine,
                     motor,
-                    0.0,
+                    free_to,
                     (steady, bound),
                     wanted,
                     &mut trajectory,
@@ -112,7 +148,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                     (steady, None)
                 })
             }
-            Some((steady, bound)) => {
+            Some((steady, bound, _)) => {
                 rest_fixed_point = Some((steady.boundary_velocity, steady.v_inf));
                 // p_0.99 exists only where |v_inf| exceeds its error.
                 let v_error = v_inf_error(&signal, &steady, bound);
@@ -363,6 +399,7 @@ fn unsettled<E: PeriodEngine>(
         final_velocity: u,
         v_inf_bounds,
         work: engine.counters(),
+        certificate_evaluations: None,
         setup_time,
         simulation_time,
         wall_time: setup_time + simulation_time,
@@ -429,7 +466,7 @@ fn certified_limit<E: PeriodEngine>(
                     .unwrap_or((steady.v_inf, steady.v_inf));
                 return Ok(Some((steady, bounds)));
             }
-            Verdict::Undecided => return Ok(None),
+            Verdict::Undecided | Verdict::Open { .. } => return Ok(None),
             Verdict::Nearer { near, far } => {
                 if near == far || spent >= CERTIFICATE_BUDGET {
                     return Ok(None);
@@ -459,6 +496,75 @@ fn certified_limit<E: PeriodEngine>(
             }
         }
     }
+}
+
+/// What the covering from rest found where the search from rest did not.
+enum Search {
+    /// The first fixed point beyond rest, the velocity up to which the
+    /// covering proved the gap from rest free (the certificate goes on
+    /// from there), and the covering's map evaluations.
+    Found(SteadyState, f64, u64),
+    /// No fixed point at all in the direction the map moves rest: the
+    /// slider runs away. `P` at the rod's extreme velocity (m/s), and the
+    /// covering's map evaluations.
+    RunAway(f64, u64),
+    /// Neither within the budget: the orbit from rest decides.
+    Nothing,
+}
+
+/// Where the search from rest finds the map pushing every velocity it
+/// tries onwards to the end of the rod's velocity range (the run-away test
+/// of `crate::analysis::fixed_point`), a fixed point may still lie in a
+/// band too narrow for it to see: where the slider meets the rod near an
+/// extremum of the rod's velocity and sticks, with sliding friction too
+/// weak to stop it anywhere else (`mu_dynamic = 0`: `P(v) = v + g_t T`
+/// wherever it slips). The covering of `crate::analysis::certificate`
+/// from rest to that end (`v_R,max` for a rising map) decides:
+///
+/// * the first point the map moves back brackets the first fixed point
+///   beyond rest, which is searched in that bracket;
+/// * a covering that reaches the end, with the end moved on beyond
+///   rounding, proves a run-away when the slider also only gains speed
+///   beyond the end: a slider faster than the rod throughout slides
+///   backwards, `P(v) = v + (g_t - a_d) T > v` for every `v > v_R,max`
+///   when `g_t > a_d` (and mirrored for a falling map). With no fixed
+///   point from rest on, the monotone orbit from rest passes every
+///   velocity (docs/model.md section 3).
+fn covering_search<E: PeriodEngine>(
+    engine: &mut E,
+    motor: &Motor,
+    growing: bool,
+    wanted: StatsWanted,
+    trajectory: &mut Option<Trajectory>,
+) -> Result<Search, Error> {
+    let (lo_r, hi_r) = engine.signal().velocity_range();
+    let (far, slides_on) = if growing && hi_r > 0.0 {
+        (hi_r, motor.g_t() - motor.a_d() > 0.0)
+    } else if !growing && lo_r < 0.0 {
+        (lo_r, motor.g_t() + motor.a_d() < 0.0)
+    } else {
+        return Ok(Search::Nothing);
+    };
+    let covering = certify(engine, motor, 0.0, far, 0.0, CERTIFICATE_BUDGET)?;
+    let evaluations = u64::from(covering.evaluations);
+    let (near, far) = match covering.verdict {
+        Verdict::Nearer { near, far } => (near, far),
+        Verdict::Open { beyond } if slides_on => return Ok(Search::RunAway(beyond, evaluations)),
+        _ => return Ok(Search::Nothing),
+    };
+    let (lo, hi) = (near.min(far), near.max(far));
+    let (v, d, iterations, correction) = analysis::fixed_point_between(engine, lo, hi, near)?;
+    let steady = analysis::steady_state_at(
+        engine,
+        PeriodStart {
+            velocity: v,
+            mode: None,
+        },
+        (Some(d), iterations, correction),
+        wanted,
+        trajectory,
+    )?;
+    Ok(Search::Found(steady, near, evaluations))
 }
 
 /// The steady state at the limit of a converged start-up: the fixed point

@@ -255,6 +255,12 @@ pub struct Unsettled {
     pub v_inf_bounds: (Option<f64>, Option<f64>),
     /// Engine work.
     pub work: WorkCounters,
+    /// For a run-away proven without simulating the start-up: the map
+    /// evaluations of the covering that proved it (no fixed point between
+    /// rest and the rod's extreme velocity, beyond which the slider only
+    /// gains speed; docs/model.md section 3, "The certificate"). `None`
+    /// when the start-up from rest decided.
+    pub certificate_evaluations: Option<u64>,
     /// Set-up of signal and engine.
     pub setup_time: Duration,
     /// The analysis.
