@@ -120,10 +120,11 @@ fn steady_states_at_changes_of_the_event_structure_are_the_limit_of_the_motion_f
         unexplained.join("\n")
     );
     // The points are bisected to within 1e-12 of a stick onset, where the
-    // steady orbit often grazes; the share established is printed above
-    // and must stay near what this set gives (88.9 %).
+    // steady orbit often grazes; there `v_inf` is bounded across both
+    // outcomes of the grazing (docs/model.md section 11). At least 90 % of
+    // the points must be established (this set gives 100 %).
     assert!(
-        t.share() >= 0.85,
+        t.share() >= 0.9,
         "only {} of {} points established: {}",
         t.established,
         t.points,

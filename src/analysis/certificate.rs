@@ -365,6 +365,23 @@ pub(crate) fn certify<E: PeriodEngine>(
     bound: f64,
     budget: u32,
 ) -> Result<Covering, SimulationError> {
+    let reach = CERTIFIED_REACH * bound;
+    certify_between(engine, motor, from, v_star, (reach, reach), budget)
+}
+
+/// [`certify`] with the covering's end `v_star - below` and the closing
+/// point `v_star + above` (on the side of `from`, and beyond `v_star`)
+/// given apart: a closing point farther out brackets the limit from rest
+/// also where the map pushes on past `v_star` (a fixed point at a jump of
+/// the map, where a grazing decides between two outcomes).
+pub(crate) fn certify_between<E: PeriodEngine>(
+    engine: &mut E,
+    motor: &Motor,
+    from: f64,
+    v_star: f64,
+    (below, above): (f64, f64),
+    budget: u32,
+) -> Result<Covering, SimulationError> {
     // The orbit from rest moves from 0 towards its limit, so the direction
     // is the sign of v*, whatever side of v* its last point `from` lies on
     // within rounding.
@@ -386,7 +403,7 @@ pub(crate) fn certify<E: PeriodEngine>(
             v_inf_bounds: None,
         });
     };
-    let target = v_star - s * CERTIFIED_REACH * bound;
+    let target = v_star - s * below;
     let mut evaluations = 0;
     // The end beyond v*: a point there that the map moves back proves a
     // fixed point between the covering's end `target` and it; the steps of
@@ -403,7 +420,7 @@ pub(crate) fn certify<E: PeriodEngine>(
                 probe(engine, target)?
             }
         };
-        let beyond = probe(engine, v_star + s * CERTIFIED_REACH * bound)?;
+        let beyond = probe(engine, v_star + s * above)?;
         *evaluations += 1;
         if s * (beyond.p - beyond.v) > beyond.error {
             return Ok((Verdict::Open { beyond: beyond.p }, None));

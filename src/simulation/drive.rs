@@ -2,10 +2,11 @@
 //! [`crate::simulation`]): the fixed point, the start-up when an indicator
 //! needs it, the check that the two agree, and the error estimates.
 
+use super::certified::{Search, bracketed_v_inf, certified_limit, covering_search};
 use super::{
     CertificateKind, Outcome, RunReport, SteadyStateCertificate, SteadyStateCheck, Unsettled,
 };
-use crate::analysis::certificate::{CERTIFIED_REACH, Verdict, certify};
+use crate::analysis::certificate::CERTIFIED_REACH;
 use crate::analysis::error_estimate::{
     established_bound, estimate_errors, startup_error, v_inf_error,
 };
@@ -282,6 +283,16 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         &indicators,
         (from_orbit, certificate.kind == CertificateKind::Covering),
     );
+    if error.v_inf.is_none() && steady.stats.events.grazing > 0 {
+        // A grazing in the steady orbit gives no engine bound; a bracket
+        // of the limit from rest by points away from it gives one.
+        let before = engine.counters().periods;
+        if let Some((lo, hi)) = bracketed_v_inf(&mut engine, motor, &steady, &mut certificate)? {
+            let v = indicators.v_inf;
+            error.v_inf = Some((v - lo).max(hi - v).max(0.0));
+        }
+        map_evaluations += engine.counters().periods - before;
+    }
     if let (Some((lo, hi)), Some(e)) = (v_inf_bounds, error.v_inf) {
         // The limit's v_inf lies between the covering's ends' (also where
         // it jumps with the boundary velocity); the estimate covers them.
@@ -408,163 +419,6 @@ fn unsettled<E: PeriodEngine>(
         Some(direction) => Outcome::RunAway { direction, state },
         None => Outcome::NotConverged(state),
     }
-}
-
-/// A certified steady state with the covering's bounds `(lo, hi)` on its
-/// `v_inf` (m/s).
-type Certified = (SteadyState, (f64, f64));
-
-/// Largest number of map evaluations a certificate may take before the
-/// orbit from rest decides.
-const CERTIFICATE_BUDGET: u32 = 256;
-
-/// The steady state reached from `from` (rest, or a point of the orbit from
-/// rest), certified: the covering of `crate::analysis::certificate` from
-/// `from` to the established fixed point `(steady, bound)`; where it finds
-/// a nearer fixed point, that one is found in the bracket it gives, and
-/// certified in turn. `None` when no certificate is found within
-/// [`CERTIFICATE_BUDGET`] map evaluations or a nearer fixed point is not
-/// established: then the orbit from rest decides. Records the cost and the
-/// other fixed points found in `certificate`; returns the certified steady
-/// state with the covering's bounds on its `v_inf`.
-fn certified_limit<E: PeriodEngine>(
-    engine: &mut E,
-    motor: &Motor,
-    from: f64,
-    (steady, bound): (SteadyState, f64),
-    wanted: StatsWanted,
-    trajectory: &mut Option<Trajectory>,
-    certificate: &mut SteadyStateCertificate,
-) -> Result<Option<Certified>, Error> {
-    let (mut from, mut steady, mut bound) = (from, steady, bound);
-    let mut rejected: Vec<f64> = Vec::new();
-    let mut spent = 0;
-    let earlier = certificate.evaluations;
-    loop {
-        let covering = certify(
-            engine,
-            motor,
-            from,
-            steady.boundary_velocity,
-            bound,
-            CERTIFICATE_BUDGET.saturating_sub(spent),
-        )?;
-        spent += covering.evaluations;
-        certificate.evaluations = earlier + u64::from(spent);
-        match covering.verdict {
-            Verdict::Certified => {
-                certificate.kind = CertificateKind::Covering;
-                let v = steady.boundary_velocity;
-                certificate.other_fixed_point = rejected
-                    .iter()
-                    .map(|w| (w - v).abs())
-                    .min_by(f64::total_cmp);
-                // At rest with a map that keeps it there, nothing bounds
-                // v_inf but the steady state itself.
-                let bounds = covering
-                    .v_inf_bounds
-                    .unwrap_or((steady.v_inf, steady.v_inf));
-                return Ok(Some((steady, bounds)));
-            }
-            Verdict::Undecided | Verdict::Open { .. } => return Ok(None),
-            Verdict::Nearer { near, far } => {
-                if near == far || spent >= CERTIFICATE_BUDGET {
-                    return Ok(None);
-                }
-                rejected.push(steady.boundary_velocity);
-                let (lo, hi) = (near.min(far), near.max(far));
-                let before = engine.counters().periods;
-                let (v, d, iterations, correction) =
-                    analysis::fixed_point_between(engine, lo, hi, near)?;
-                // A fresh observation of the new steady period.
-                *trajectory = trajectory.as_ref().map(|_| Trajectory::default());
-                let next = analysis::steady_state_at(
-                    engine,
-                    PeriodStart {
-                        velocity: v,
-                        mode: None,
-                    },
-                    (Some(d), iterations, correction),
-                    wanted,
-                    trajectory,
-                )?;
-                spent += (engine.counters().periods - before) as u32;
-                let Some(b) = established_bound(engine.signal(), &next) else {
-                    return Ok(None);
-                };
-                (from, steady, bound) = (near, next, b);
-            }
-        }
-    }
-}
-
-/// What the covering from rest found where the search from rest did not.
-enum Search {
-    /// The first fixed point beyond rest, the velocity up to which the
-    /// covering proved the gap from rest free (the certificate goes on
-    /// from there), and the covering's map evaluations.
-    Found(SteadyState, f64, u64),
-    /// No fixed point at all in the direction the map moves rest: the
-    /// slider runs away. `P` at the rod's extreme velocity (m/s), and the
-    /// covering's map evaluations.
-    RunAway(f64, u64),
-    /// Neither within the budget: the orbit from rest decides.
-    Nothing,
-}
-
-/// Where the search from rest finds the map pushing every velocity it
-/// tries onwards to the end of the rod's velocity range (the run-away test
-/// of `crate::analysis::fixed_point`), a fixed point may still lie in a
-/// band too narrow for it to see: where the slider meets the rod near an
-/// extremum of the rod's velocity and sticks, with sliding friction too
-/// weak to stop it anywhere else (`mu_dynamic = 0`: `P(v) = v + g_t T`
-/// wherever it slips). The covering of `crate::analysis::certificate`
-/// from rest to that end (`v_R,max` for a rising map) decides:
-///
-/// * the first point the map moves back brackets the first fixed point
-///   beyond rest, which is searched in that bracket;
-/// * a covering that reaches the end, with the end moved on beyond
-///   rounding, proves a run-away when the slider also only gains speed
-///   beyond the end: a slider faster than the rod throughout slides
-///   backwards, `P(v) = v + (g_t - a_d) T > v` for every `v > v_R,max`
-///   when `g_t > a_d` (and mirrored for a falling map). With no fixed
-///   point from rest on, the monotone orbit from rest passes every
-///   velocity (docs/model.md section 3).
-fn covering_search<E: PeriodEngine>(
-    engine: &mut E,
-    motor: &Motor,
-    growing: bool,
-    wanted: StatsWanted,
-    trajectory: &mut Option<Trajectory>,
-) -> Result<Search, Error> {
-    let (lo_r, hi_r) = engine.signal().velocity_range();
-    let (far, slides_on) = if growing && hi_r > 0.0 {
-        (hi_r, motor.g_t() - motor.a_d() > 0.0)
-    } else if !growing && lo_r < 0.0 {
-        (lo_r, motor.g_t() + motor.a_d() < 0.0)
-    } else {
-        return Ok(Search::Nothing);
-    };
-    let covering = certify(engine, motor, 0.0, far, 0.0, CERTIFICATE_BUDGET)?;
-    let evaluations = u64::from(covering.evaluations);
-    let (near, far) = match covering.verdict {
-        Verdict::Nearer { near, far } => (near, far),
-        Verdict::Open { beyond } if slides_on => return Ok(Search::RunAway(beyond, evaluations)),
-        _ => return Ok(Search::Nothing),
-    };
-    let (lo, hi) = (near.min(far), near.max(far));
-    let (v, d, iterations, correction) = analysis::fixed_point_between(engine, lo, hi, near)?;
-    let steady = analysis::steady_state_at(
-        engine,
-        PeriodStart {
-            velocity: v,
-            mode: None,
-        },
-        (Some(d), iterations, correction),
-        wanted,
-        trajectory,
-    )?;
-    Ok(Search::Found(steady, near, evaluations))
 }
 
 /// The steady state at the limit of a converged start-up: the fixed point

@@ -90,6 +90,7 @@
 
 pub(crate) mod budget;
 mod cache;
+mod certified;
 mod drive;
 mod outcome;
 
