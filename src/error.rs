@@ -215,6 +215,14 @@ pub enum SceneError {
         /// The offending field and value.
         source: ParamError,
     },
+    /// An override (`--set PATH=VALUE`) that does not fit the scene.
+    #[error("scene {path}: {source}")]
+    Override {
+        /// The path given (or `<string>`).
+        path: String,
+        /// The override and what is wrong with it.
+        source: crate::scene::OverrideError,
+    },
 }
 
 /// Sweep files, sweep outputs and their merging.

@@ -104,8 +104,8 @@ pub use power::{ActuatorParams, PowerReport, input_power};
 pub use provenance::{VERSION, scene_hash};
 pub use report::{format_with_error, to_json, to_text};
 pub use scene::{
-    EngineKind, MAX_FIXED_STEPS_PER_PERIOD, MAX_INPUT_BYTES, Outputs, RunSettings, Scene, Warning,
-    read_input,
+    EngineKind, MAX_FIXED_STEPS_PER_PERIOD, MAX_INPUT_BYTES, Outputs, Override, OverrideError,
+    RunSettings, Scene, Warning, read_input,
 };
 pub use signal::description::SignalDescription;
 pub use signal::{FourierSignal, IdealShape, MAX_HARMONICS, RodState, Signal, SignalSpec};

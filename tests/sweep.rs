@@ -462,12 +462,32 @@ fn merge_refuses_mismatched_inputs() {
     let o = stickslip(&["merge", s(&out), s(&a)]);
     assert_eq!(o.status.code(), Some(2));
     assert!(!out.exists());
-    // A gap is reported, not refused.
-    let err = ok(stickslip(&["merge", "-o", s(&out), s(&a)]));
+    // A missing shard is refused, naming the cases no input holds (the
+    // sweep's number of cases is in the first line of every shard), and
+    // nothing is written; --allow-partial merges what is there and lists
+    // them.
+    // SMALL has 2 x 3 x 2 = 12 cases; shard 1/2 holds the even ones.
+    let err = failure(stickslip(&["merge", "-o", s(&out), s(&a)]));
     assert!(
-        err.contains("5 cases missing") && err.contains("[1, 3, 5, 7, 9]"),
+        err.contains(
+            "not written: 6 of the sweep's 12 cases are in no input ([1, 3, 5, 7, 9, 11])"
+        ) && err.contains("--allow-partial"),
         "{err}"
     );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(!out.exists());
+    let err = ok(stickslip(&[
+        "merge",
+        "-o",
+        s(&out),
+        s(&a),
+        "--allow-partial",
+    ]));
+    assert!(
+        err.contains("6 cases of the sweep are in no input") && err.contains("[1, 3, 5, 7, 9, 11]"),
+        "{err}"
+    );
+    assert_eq!(fs::read_to_string(&out).unwrap().lines().count(), 2 + 6);
 }
 
 /// A run-away is a physical outcome: its row has the regime `run-away`,

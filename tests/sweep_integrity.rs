@@ -380,10 +380,22 @@ fn issue_16_merge_of_huge_case_indices_does_not_allocate() {
         "far.csv",
         &text.replacen(row, &row.replacen('0', "9999999", 1), 1),
     );
-    let err = ok(stickslip(&["merge", "-o", s(&out), s(&far)]));
+    let err = failure(stickslip(&["merge", "-o", s(&out), s(&far)]));
+    assert!(
+        err.contains("9999999 of the sweep's 10000000 cases are in no input ([0, 1, 2, 3, 4, 5, 6, 7, 8, 9, ...])"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    let err = ok(stickslip(&[
+        "merge",
+        "-o",
+        s(&out),
+        s(&far),
+        "--allow-partial",
+    ]));
     assert!(
         err.contains(
-            "9999999 cases missing below the last one: [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, ...]"
+            "9999999 cases of the sweep are in no input: [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, ...]"
         ),
         "{err}"
     );

@@ -63,6 +63,8 @@ pub(crate) struct CharacteristicArgs {
     max_evaluations: u64,
     #[command(flatten)]
     options: SceneOptions,
+    #[command(flatten)]
+    set: super::SceneSet,
 }
 
 /// The format of the table.
@@ -115,7 +117,7 @@ pub(crate) fn characteristic(
         LoadArg::Force => LoadAxis::Force,
         LoadArg::Incline => LoadAxis::Incline,
     };
-    let mut scene = super::run::load(args.scene.as_deref())?;
+    let mut scene = super::load_scene(args.scene.as_deref(), &args.set)?;
     let holding = scene.motor.mu_static * scene.motor.contact_force;
     let (lo, hi) = axis.default_range(holding);
     let options = Options {

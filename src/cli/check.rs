@@ -1,7 +1,6 @@
 //! `stickslip check [SCENE] [--steps ...]`: the event engine against the
 //! fixed-step reference at several resolutions.
 
-use super::run::load;
 use super::{Failure, SceneOptions, Streams, write_out};
 use clap::Args;
 use std::path::PathBuf;
@@ -21,10 +20,12 @@ pub(crate) struct CheckArgs {
     steps: Vec<u32>,
     #[command(flatten)]
     options: SceneOptions,
+    #[command(flatten)]
+    set: super::SceneSet,
 }
 
 pub(crate) fn check(args: CheckArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
-    let mut scene = load(args.scene.as_deref())?;
+    let mut scene = super::load_scene(args.scene.as_deref(), &args.set)?;
     for s in &args.steps {
         crate::scene::check_fixed_steps(&scene.signal, *s, "--steps").map_err(|e| e.to_string())?;
     }

@@ -19,8 +19,10 @@ pub(crate) const EXIT_BAD_INPUT: u8 = 3;
                         2 usage error, 3 bad input or internal error."
 )]
 pub(crate) struct CompareArgs {
-    /// Scene file (TOML) the data were computed for.
+    /// Scene file (TOML) the data were computed for (`-`: standard input).
     scene: PathBuf,
+    #[command(flatten)]
+    set: super::SceneSet,
     /// The user's results: CSV files (columns t, x_S/x, v_S/v, x_R; p, v_p)
     /// or MATLAB Level 5 MAT-files (.mat, variables of the same names).
     #[arg(required = true)]
@@ -103,7 +105,7 @@ pub(crate) fn compare(args: CompareArgs, streams: &mut Streams<'_>) -> u8 {
 }
 
 fn run(args: CompareArgs, streams: &mut Streams<'_>) -> Result<bool, String> {
-    let scene = super::run::load(Some(&args.scene))?;
+    let scene = super::load_scene(Some(&args.scene), &args.set)?;
     let for_positive = |option: &str, value: f64| {
         if value > 0.0 && value.is_finite() {
             Ok(value)

@@ -156,6 +156,51 @@ fn write_out(streams: &mut Streams<'_>, text: &str) -> Result<(), Failure> {
     }
 }
 
+/// `--set PATH=VALUE`, taken by every command that reads a scene (flatten
+/// into its arguments with `#[command(flatten)]`).
+#[derive(Args, Debug, Clone, Default)]
+pub(crate) struct SceneSet {
+    /// Set one scene field as if the file held it (repeatable, applied in
+    /// order): PATH is the field's dotted path with 0-based indices
+    /// (motor.slider_mass, signal.amplitudes[1]), VALUE a TOML value or a
+    /// bare word (5e-3, true, fourier). Setting one of signal.kappa,
+    /// sqrt_kappa, frequency, f_max replaces whichever the scene gave.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub(crate) set: Vec<String>,
+}
+
+impl SceneSet {
+    /// The overrides, parsed (`crate::scene::Override`).
+    pub(crate) fn overrides(&self) -> Result<Vec<crate::scene::Override>, Failure> {
+        self.set
+            .iter()
+            .map(|s| {
+                s.parse()
+                    .map_err(|e: crate::scene::OverrideError| e.to_string())
+            })
+            .collect()
+    }
+}
+
+/// A scene file (`-`: standard input), or the built-in default scene, with
+/// the `--set` overrides applied before it is checked.
+pub(crate) fn load_scene(
+    path: Option<&Path>,
+    set: &SceneSet,
+) -> Result<crate::scene::Scene, Failure> {
+    let overrides = set.overrides()?;
+    let scene = match path {
+        Some(p) => crate::scene::Scene::from_path_with(p, &overrides),
+        None if overrides.is_empty() => Ok(crate::scene::Scene::default()),
+        None => crate::scene::Scene::from_toml_str_with(
+            &crate::scene::Scene::default().to_toml(),
+            "<default scene>",
+            &overrides,
+        ),
+    };
+    scene.map_err(|e| e.to_string())
+}
+
 /// Options every command that simulates a scene takes (flatten into its
 /// arguments with `#[command(flatten)]`).
 #[derive(Args, Debug, Clone, Copy, Default)]

@@ -70,6 +70,8 @@ pub(crate) struct OptimizeArgs {
     jobs: Option<u32>,
     #[command(flatten)]
     options: SceneOptions,
+    #[command(flatten)]
+    set: super::SceneSet,
 }
 
 /// `--map-grid RxP`: two integers from 2 to 2000.
@@ -136,15 +138,16 @@ fn check_outputs(args: &OptimizeArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-/// The scene and its `[optimize]` table.
-fn load(path: Option<&Path>) -> Result<(Scene, OptimizeTable), Failure> {
+/// The scene (with the `--set` overrides) and its `[optimize]` table.
+fn load(path: Option<&Path>, set: &super::SceneSet) -> Result<(Scene, OptimizeTable), Failure> {
     match path {
-        None => Ok((Scene::default(), OptimizeTable::default())),
+        None => Ok((super::load_scene(None, set)?, OptimizeTable::default())),
         Some(p) => {
-            let origin = p.display().to_string();
+            let origin = scene::origin_of(p);
             let text = scene::read_input(p)
                 .map_err(|e| format!("cannot read scene file {origin}: {e}"))?;
-            let scene = Scene::from_toml_str(&text, &origin).map_err(|e| e.to_string())?;
+            let scene = Scene::from_toml_str_with(&text, &origin, &set.overrides()?)
+                .map_err(|e| e.to_string())?;
             let table = optimize::spec::read_table(&text, &origin).map_err(|e| e.to_string())?;
             Ok((scene, table))
         }
@@ -153,7 +156,7 @@ fn load(path: Option<&Path>) -> Result<(Scene, OptimizeTable), Failure> {
 
 pub(crate) fn optimize(args: OptimizeArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
     check_outputs(&args)?;
-    let (mut scene, table) = load(args.scene.as_deref())?;
+    let (mut scene, table) = load(args.scene.as_deref(), &args.set)?;
     args.options.apply(&mut scene, streams);
     let overrides = Overrides {
         harmonics: args.harmonics,

@@ -107,6 +107,8 @@ pub(crate) struct PlotArgs {
     ref_x: Vec<f64>,
     #[command(flatten)]
     options: SceneOptions,
+    #[command(flatten)]
+    set: super::SceneSet,
 }
 
 /// A number in `[lo, hi]`, or a one-line error naming the flag.
@@ -208,7 +210,7 @@ fn scene_plot(args: &PlotArgs, streams: &mut Streams<'_>) -> Result<Figure, Fail
         }
     }
     let spans = motion::parse_periods(&args.periods)?;
-    let mut scene = super::run::load(Some(&args.input))?;
+    let mut scene = super::load_scene(Some(&args.input), &args.set)?;
     args.options.apply(&mut scene, streams);
     let name = name_of(&args.output);
     let rows: Vec<Row> = args
@@ -246,6 +248,13 @@ pub(crate) fn plot(args: PlotArgs, streams: &mut Streams<'_>) -> Result<(), Fail
         ));
     }
     let figure = if is_csv(&args.input) {
+        if let Some(first) = args.set.set.first() {
+            return Err(format!(
+                "--set {}: applies to a scene, and {} is a sweep output",
+                first.escape_debug(),
+                args.input.display()
+            ));
+        }
         sweep_plot(&args)?
     } else {
         scene_plot(&args, streams)?

@@ -2,7 +2,7 @@
 //! as a summary or as one JSON object (keys in `docs/interface.md`).
 
 use super::{Failure, SceneOptions, Streams, refuse_outputs, write_out};
-use crate::{report, scene::Scene, simulation};
+use crate::{report, simulation};
 use clap::Args;
 use std::path::{Path, PathBuf};
 
@@ -24,6 +24,8 @@ pub(crate) struct RunArgs {
     sensitivities: bool,
     #[command(flatten)]
     options: SceneOptions,
+    #[command(flatten)]
+    set: super::SceneSet,
     /// Exact trajectory export (`--trajectory`, `--times`, `--sample-rate`,
     /// `--periods`, `--periods-series`; docs/interface.md).
     #[command(flatten)]
@@ -52,14 +54,6 @@ pub(crate) struct ExportArgs {
     periods_series: Option<PathBuf>,
 }
 
-/// A scene file, or the built-in default scene.
-pub(crate) fn load(path: Option<&Path>) -> Result<Scene, Failure> {
-    match path {
-        Some(p) => Scene::from_path(p).map_err(|e| e.to_string()),
-        None => Ok(Scene::default()),
-    }
-}
-
 pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
     let e = args.export;
     // No output may be an input (the scene, the sample times) or another
@@ -76,7 +70,7 @@ pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failur
         .map(PathBuf::as_path)
         .collect();
     refuse_outputs(&outputs, &inputs)?;
-    let mut scene = load(args.scene.as_deref())?;
+    let mut scene = super::load_scene(args.scene.as_deref(), &args.set)?;
     args.options.apply(&mut scene, streams);
     let request = crate::export::TrajectoryRequest {
         trajectory: e.trajectory,

@@ -22,10 +22,12 @@ pub(crate) struct SignalArgs {
     /// Print a Python (numpy) snippet defining x_R(t) and v_R(t).
     #[arg(long)]
     python: bool,
+    #[command(flatten)]
+    set: super::SceneSet,
 }
 
 pub(crate) fn signal(args: SignalArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
-    let scene = super::run::load(args.scene.as_deref())?;
+    let scene = super::load_scene(args.scene.as_deref(), &args.set)?;
     let (signal, motor) = simulation::build(&scene).map_err(|e| e.to_string())?;
     let d = SignalDescription::new(&scene.signal, &signal, &motor);
     let text = if args.json {

@@ -30,6 +30,9 @@ pub(crate) struct SweepArgs {
     /// than the cases to run).
     #[arg(short, long, value_parser = clap::value_parser!(u32).range(1..))]
     jobs: Option<u32>,
+    /// Overrides of the base scene, before the axes are applied.
+    #[command(flatten)]
+    set: super::SceneSet,
 }
 
 /// Arguments of `merge`.
@@ -41,12 +44,16 @@ pub(crate) struct MergeArgs {
     /// Sweep outputs with the same header line and columns.
     #[arg(required = true)]
     inputs: Vec<PathBuf>,
+    /// Merge even when cases of the sweep are in no input (a shard missing
+    /// or unfinished); they are listed in a warning.
+    #[arg(long)]
+    allow_partial: bool,
 }
 
 /// Runs the sweep; `Ok` holds the exit status: 0, or 130/143 when a
 /// signal stopped it (the rows finished so far are in the output).
 pub(crate) fn sweep(args: SweepArgs, streams: &mut Streams<'_>) -> Result<u8, Failure> {
-    let sweep = sweep::load(&args.file).map_err(|e| e.to_string())?;
+    let sweep = sweep::load_with(&args.file, &args.set.overrides()?).map_err(|e| e.to_string())?;
     let output = args
         .output
         .unwrap_or_else(|| sweep.default_output(args.shard));
@@ -110,7 +117,8 @@ pub(crate) fn sweep(args: SweepArgs, streams: &mut Streams<'_>) -> Result<u8, Fa
 }
 
 pub(crate) fn merge(args: MergeArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
-    let s = sweep::merge(&args.output, &args.inputs).map_err(|e| e.to_string())?;
+    let s =
+        sweep::merge(&args.output, &args.inputs, args.allow_partial).map_err(|e| e.to_string())?;
     let _ = writeln!(
         streams.err,
         "stickslip: {} rows in {}",
@@ -126,7 +134,7 @@ pub(crate) fn merge(args: MergeArgs, streams: &mut Streams<'_>) -> Result<(), Fa
         let listed: Vec<String> = s.first_missing.iter().map(u64::to_string).collect();
         let _ = writeln!(
             streams.err,
-            "stickslip: warning: {} cases missing below the last one: [{}{more}]",
+            "stickslip: warning: {} cases of the sweep are in no input: [{}{more}]",
             s.missing,
             listed.join(", ")
         );

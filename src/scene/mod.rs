@@ -109,10 +109,12 @@
 //! [`SceneError::Io`].
 
 mod file;
+mod overrides;
 mod toml_error;
 mod warnings;
 
 pub(crate) use file::SceneFile;
+pub use overrides::{Override, OverrideError};
 pub(crate) use toml_error::parse_message;
 pub use warnings::Warning;
 
@@ -193,16 +195,36 @@ pub const MAX_INPUT_BYTES: u64 = 1 << 20;
 /// hundreds, so more steps than this are refused up front.
 pub const MAX_FIXED_STEPS_PER_PERIOD: u64 = 100_000_000;
 
-/// Reads a text input file (scene or sweep) of at most [`MAX_INPUT_BYTES`],
+/// The input path that stands for standard input.
+pub(crate) const STDIN: &str = "-";
+
+/// How messages name an input: its path, or `<stdin>`.
+pub(crate) fn origin_of(path: &Path) -> String {
+    if path == Path::new(STDIN) {
+        "<stdin>".to_owned()
+    } else {
+        path.display().to_string()
+    }
+}
+
+/// Reads a text input file (scene or sweep) of at most [`MAX_INPUT_BYTES`]
+/// (`-`: standard input),
 /// reading no more than one byte past the limit whatever the file is, so
 /// that `/dev/zero` or a huge file is refused quickly and without memory.
 /// A file over the limit is an [`std::io::ErrorKind::InvalidData`] error
 /// whose message gives its size (or "more than", for a stream) and the
 /// limit; so is text that is not UTF-8.
 pub fn read_input(path: &Path) -> std::io::Result<String> {
-    let file = std::fs::File::open(path)?;
     let mut bytes = Vec::new();
-    file.take(MAX_INPUT_BYTES + 1).read_to_end(&mut bytes)?;
+    if path == Path::new(STDIN) {
+        std::io::stdin()
+            .lock()
+            .take(MAX_INPUT_BYTES + 1)
+            .read_to_end(&mut bytes)?;
+    } else {
+        let file = std::fs::File::open(path)?;
+        file.take(MAX_INPUT_BYTES + 1).read_to_end(&mut bytes)?;
+    }
     if bytes.len() as u64 > MAX_INPUT_BYTES {
         let size = std::fs::metadata(path)
             .ok()
@@ -329,14 +351,59 @@ impl Scene {
         })
     }
 
-    /// Reads, parses and validates a scene file.
+    /// Reads, parses and validates a scene file (`-`: standard input).
     pub fn from_path(path: &Path) -> Result<Scene, SceneError> {
-        let origin = path.display().to_string();
+        Scene::from_path_with(path, &[])
+    }
+
+    /// [`Scene::from_path`] with `overrides` applied to the file's table
+    /// before it is read ([`Scene::from_toml_str_with`]).
+    pub fn from_path_with(path: &Path, overrides: &[Override]) -> Result<Scene, SceneError> {
+        let origin = origin_of(path);
         let text = read_input(path).map_err(|source| SceneError::Io {
             path: origin.clone(),
             source,
         })?;
-        Scene::from_toml_str(&text, &origin)
+        Scene::from_toml_str_with(&text, &origin, overrides)
+    }
+
+    /// [`Scene::from_toml_str`] with `overrides` (`PATH=VALUE`, the grammar
+    /// of `crate::scene::Override`) applied, in order, to the text's TOML
+    /// table before it is read: an overridden field is checked as if the
+    /// text held it.
+    pub fn from_toml_str_with(
+        text: &str,
+        origin: &str,
+        overrides: &[Override],
+    ) -> Result<Scene, SceneError> {
+        if overrides.is_empty() {
+            return Scene::from_toml_str(text, origin);
+        }
+        let mut table: toml::Table =
+            text.parse()
+                .map_err(|e: toml::de::Error| SceneError::Parse {
+                    path: origin.to_owned(),
+                    message: parse_message(text, &e),
+                })?;
+        overrides::apply(&mut table, overrides).map_err(|source| SceneError::Override {
+            path: origin.to_owned(),
+            source,
+        })?;
+        let changed = toml::to_string(&table).expect("a TOML table writes as TOML");
+        let given: Vec<String> = overrides.iter().map(Override::to_string).collect();
+        let origin = format!("{origin} with --set {}", given.join(" --set "));
+        Scene::from_toml_str(&changed, &origin).map_err(|e| match e {
+            // The text parsed before the overrides: the place the parser
+            // names is in the rewritten table, not in the user's text.
+            SceneError::Parse { path, message } => SceneError::Parse {
+                path,
+                message: match message.rfind(" (line ") {
+                    Some(at) if message.ends_with(')') => message[..at].to_owned(),
+                    _ => message,
+                },
+            },
+            other => other,
+        })
     }
 
     /// The scene as TOML, every field written out (`kappa`, not

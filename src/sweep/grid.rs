@@ -6,6 +6,7 @@ use super::axis::set_level;
 pub use super::axis::{Axis, AxisKey, AxisValue};
 use crate::error::{ParamError, SweepError};
 use crate::indicator::Indicator;
+use crate::scene::Override;
 use crate::scene::Scene;
 use rayon::prelude::*;
 use serde::Deserialize;
@@ -172,14 +173,24 @@ pub struct Sweep {
 
 /// Reads, parses and validates a sweep file.
 pub fn load(path: impl AsRef<Path>) -> Result<Sweep, SweepError> {
+    load_with(path, &[])
+}
+
+/// [`load`] with `overrides` (`PATH=VALUE`) applied to the base scene
+/// before the axes (`Scene::from_toml_str_with`).
+pub fn load_with(path: impl AsRef<Path>, overrides: &[Override]) -> Result<Sweep, SweepError> {
     let path = path.as_ref();
-    let origin = path.display().to_string();
+    let origin = crate::scene::origin_of(path);
     let text = crate::scene::read_input(path).map_err(|source| SweepError::Io {
         path: origin.clone(),
         source,
     })?;
     let dir = path.parent().unwrap_or(Path::new("."));
-    Sweep::from_toml_str(&text, &origin, dir)
+    let file: SweepFile = toml::from_str(&text).map_err(|e| SweepError::Parse {
+        path: origin.clone(),
+        message: crate::scene::parse_message(&text, &e),
+    })?;
+    Sweep::from_file_with(file, &origin, dir, overrides)
 }
 
 impl Sweep {
@@ -195,16 +206,31 @@ impl Sweep {
 
     /// Validates a parsed sweep file.
     pub fn from_file(file: SweepFile, origin: &str, dir: &Path) -> Result<Sweep, SweepError> {
+        Self::from_file_with(file, origin, dir, &[])
+    }
+
+    /// [`Sweep::from_file`] with `overrides` applied to the base scene.
+    pub fn from_file_with(
+        file: SweepFile,
+        origin: &str,
+        dir: &Path,
+        overrides: &[Override],
+    ) -> Result<Sweep, SweepError> {
         let param = |source: ParamError| SweepError::Param {
             path: origin.to_owned(),
             source,
         };
+        let base_error = |source| SweepError::Base {
+            path: origin.to_owned(),
+            source: Box::new(source),
+        };
         let mut base = match &file.base {
-            Some(p) => Scene::from_path(&dir.join(p)).map_err(|source| SweepError::Base {
-                path: origin.to_owned(),
-                source: Box::new(source),
-            })?,
-            None => Scene::default(),
+            Some(p) => Scene::from_path_with(&dir.join(p), overrides).map_err(base_error)?,
+            None if overrides.is_empty() => Scene::default(),
+            None => {
+                Scene::from_toml_str_with(&Scene::default().to_toml(), "<default scene>", overrides)
+                    .map_err(base_error)?
+            }
         };
         base.outputs.trajectory = false;
         base.outputs.events = false;

@@ -42,8 +42,16 @@ fn file_id(path: &Path) -> Option<String> {
 }
 
 /// Joins sweep outputs into `output` (see the module docs). Errors name
-/// the input and the line; on error nothing is written.
-pub fn merge(output: &Path, inputs: &[PathBuf]) -> Result<MergeSummary, SweepError> {
+/// the input and the line; on error nothing is written. Cases of the sweep
+/// that no input holds (its number of cases is in the inputs' first line;
+/// for files of earlier versions, the cases below the highest one) are an
+/// error, naming them, unless `allow_partial`: then the merge is written
+/// and [`MergeSummary`] lists them.
+pub fn merge(
+    output: &Path,
+    inputs: &[PathBuf],
+    allow_partial: bool,
+) -> Result<MergeSummary, SweepError> {
     let refuse = |path: &Path, reason: String| SweepError::Output {
         path: path.display().to_string(),
         reason,
@@ -170,24 +178,45 @@ pub fn merge(output: &Path, inputs: &[PathBuf]) -> Result<MergeSummary, SweepErr
             "nothing to merge: no input has a column header or a row".into(),
         ));
     };
-    let mut text = layout.head();
-    for (line, _, _) in rows.values() {
-        text.push_str(line);
-        text.push('\n');
-    }
-    write_atomically(output, &text)?;
-    // Gaps from the keys, not by counting up to the largest case.
+    // Gaps from the keys, not by counting up to the largest case; up to
+    // the sweep's number of cases where the inputs give it.
     let last = rows.keys().next_back().copied().unwrap_or(0);
-    let missing = (last + u64::from(!rows.is_empty())) - rows.len() as u64;
+    let end = match layout.meta.cases {
+        Some(n) => n.max(last + u64::from(!rows.is_empty())),
+        None => last + u64::from(!rows.is_empty()),
+    };
+    let missing = end - rows.len() as u64;
     let mut first_missing = Vec::new();
     let mut expected = 0;
-    for &case in rows.keys() {
+    for case in rows.keys().copied().chain([end]) {
         first_missing.extend((expected..case).take(MISSING_LISTED - first_missing.len()));
         if first_missing.len() == MISSING_LISTED {
             break;
         }
         expected = case + 1;
     }
+    if missing > 0 && !allow_partial {
+        let more = if missing > first_missing.len() as u64 {
+            ", ..."
+        } else {
+            ""
+        };
+        let listed: Vec<String> = first_missing.iter().map(u64::to_string).collect();
+        return Err(refuse(
+            output,
+            format!(
+                "not written: {missing} of the sweep's {end} cases are in no input ([{}{more}]); \
+                 a shard is missing or unfinished; give it, or pass --allow-partial",
+                listed.join(", ")
+            ),
+        ));
+    }
+    let mut text = layout.head();
+    for (line, _, _) in rows.values() {
+        text.push_str(line);
+        text.push('\n');
+    }
+    write_atomically(output, &text)?;
     Ok(MergeSummary {
         rows: rows.len(),
         missing,

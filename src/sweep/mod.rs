@@ -185,7 +185,7 @@ mod table;
 pub use execute::{CaseResult, Options, Summary, execute, run_case, run_cases};
 pub use grid::{
     AxesTable, Axis, AxisKey, AxisValue, Case, Format, MAX_CASES, Shard, Sweep, SweepFile,
-    SweepOutputsTable, load,
+    SweepOutputsTable, load, load_with,
 };
 pub use merge::{MISSING_LISTED, MergeSummary, merge};
 

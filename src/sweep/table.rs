@@ -8,12 +8,14 @@ use crate::indicator::Indicator;
 use crate::provenance::{VERSION, scene_hash};
 use crate::simulation::Outcome;
 
-/// The first line of an output file: the program that wrote it and the
-/// fingerprint of the sweep's base scene.
+/// The first line of an output file: the program that wrote it, the
+/// fingerprint of the sweep's base scene and the number of cases of the
+/// whole sweep (absent in files of earlier versions).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(super) struct Meta {
     pub version: String,
     pub base_scene_hash: String,
+    pub cases: Option<u64>,
 }
 
 impl Meta {
@@ -22,20 +24,34 @@ impl Meta {
         Meta {
             version: VERSION.to_owned(),
             base_scene_hash: scene_hash(sweep.base()),
+            cases: Some(sweep.len() as u64),
         }
     }
 
     pub(super) fn line(&self, format: Format) -> String {
         match format {
-            Format::Csv => format!(
-                "# stickslip_version = {}, base_scene_hash = {}",
-                self.version, self.base_scene_hash
-            ),
-            Format::Jsonl => serde_json::json!({
-                "stickslip_version": self.version,
-                "base_scene_hash": self.base_scene_hash,
-            })
-            .to_string(),
+            Format::Csv => {
+                let mut line = format!(
+                    "# stickslip_version = {}, base_scene_hash = {}",
+                    self.version, self.base_scene_hash
+                );
+                if let Some(n) = self.cases {
+                    line.push_str(&format!(", cases = {n}"));
+                }
+                line
+            }
+            Format::Jsonl => {
+                let mut map = serde_json::Map::new();
+                map.insert("stickslip_version".into(), self.version.clone().into());
+                map.insert(
+                    "base_scene_hash".into(),
+                    self.base_scene_hash.clone().into(),
+                );
+                if let Some(n) = self.cases {
+                    map.insert("cases".into(), n.into());
+                }
+                serde_json::Value::Object(map).to_string()
+            }
         }
     }
 
@@ -43,26 +59,34 @@ impl Meta {
         let rest = line.strip_prefix("# ")?;
         let mut version = None;
         let mut base = None;
+        let mut cases = None;
         for item in rest.split(", ") {
             match item.split_once(" = ")? {
                 ("stickslip_version", v) => version = Some(v.to_owned()),
                 ("base_scene_hash", h) => base = Some(h.to_owned()),
+                ("cases", n) => cases = Some(n.parse().ok()?),
                 _ => return None,
             }
         }
         Some(Meta {
             version: version?,
             base_scene_hash: base?,
+            cases,
         })
     }
 
     pub(super) fn parse_json(map: &serde_json::Map<String, serde_json::Value>) -> Option<Meta> {
-        if map.len() != 2 {
+        let cases = match map.get("cases") {
+            Some(n) => Some(n.as_u64()?),
+            None => None,
+        };
+        if map.len() != 2 + usize::from(cases.is_some()) {
             return None;
         }
         Some(Meta {
             version: map.get("stickslip_version")?.as_str()?.to_owned(),
             base_scene_hash: map.get("base_scene_hash")?.as_str()?.to_owned(),
+            cases,
         })
     }
 }
