@@ -15,7 +15,7 @@
 //! prints a table and writes `plots/work_precision.svg` (drawn with the
 //! library's plotting kit, `stickslip::plot`, double-column preset; log-log relative
 //! error of `v_inf` and of the start-up time `T p_0.99` against wall time)
-//! and `plots/work_precision.csv` (every point drawn).
+//! and `plots/work_precision.svg.csv` (every point drawn).
 //!
 //! **Errors.** The event engine at default tolerances is the reference
 //! value. For the fixed-step runs the error is the difference to it; for
@@ -247,7 +247,7 @@ fn main() {
     let figure = figure(&cases, &points, csv(&cases, &points));
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("plots");
     figure.write_to(&dir).expect("plots/ is writable");
-    println!("wrote plots/work_precision.svg and plots/work_precision.csv");
+    println!("wrote plots/work_precision.svg and plots/work_precision.svg.csv");
 }
 
 /// The reference at the paper's resolution against the event engine on the

@@ -512,7 +512,8 @@ fn outputs_never_overwrite_the_input_or_each_other() {
     );
     assert_eq!(std::fs::read_to_string(&scene_path).unwrap(), text);
     let svg = dir.join("c.svg");
-    let csv = dir.join("c.csv");
+    // The figure's data file: its name with `.csv` appended.
+    let csv = dir.join("c.svg.csv");
     let o = stickslip(&[
         "characteristic",
         s,
@@ -842,7 +843,7 @@ fn a_drive_without_sliding_friction_has_a_complete_characteristic_in_bounded_run
     for key in ["slope", "slope_left", "slope_right"] {
         assert!(zero[key].is_null(), "{key} at zero load: {}", zero[key]);
     }
-    let csv = std::fs::read_to_string(figure.with_extension("csv")).unwrap();
+    let csv = std::fs::read_to_string(stickslip::plot::data_path(&figure)).unwrap();
     let header: Vec<&str> = csv
         .lines()
         .find(|l| l.starts_with("load,"))

@@ -64,9 +64,9 @@ fn a_scene_plot_writes_the_figure_and_its_data_the_same_twice() {
     ];
     let (code, stdout, err) = cli(&args);
     assert_eq!(code, 0, "{err}");
-    assert!(stdout.contains("motion.svg") && stdout.contains("motion.csv"));
+    assert!(stdout.contains("motion.svg") && stdout.contains("motion.svg.csv"));
     let first = std::fs::read(&out).unwrap();
-    let csv = std::fs::read_to_string(d.join("motion.csv")).unwrap();
+    let csv = std::fs::read_to_string(d.join("motion.svg.csv")).unwrap();
     for kind in ["stick_to_slip", "slip_to_stick"] {
         assert!(
             csv.contains(&format!(",event,0,{kind},")),
@@ -122,7 +122,7 @@ fn a_sweep_plot_shows_failed_and_unsettled_rows() {
         "failed row drawn"
     );
     assert!(svg.contains(r#"data-label="run-away (1, at the bottom)""#));
-    let csv = std::fs::read_to_string(d.join("v.csv")).unwrap();
+    let csv = std::fs::read_to_string(d.join("v.svg.csv")).unwrap();
     let rows = csv.lines().filter(|l| !l.starts_with('#')).count() - 1;
     assert_eq!(rows, 6, "every input row in the figure's data");
     assert!(csv.contains(",failed\n") && csv.contains(",run-away\n"));
@@ -159,7 +159,6 @@ fn bad_arguments_are_one_line_and_create_nothing() {
     std::fs::write(&input, SWEEP_CSV).unwrap();
     let out = d.join("f.svg");
     let missing = d.join("no/such/dir/f.svg");
-    let over_input = d.join("grid.svg");
     let scene = "examples/scenes/paper_default.toml";
     let cases: Vec<(Vec<&str>, &str)> = vec![
         (
@@ -205,18 +204,6 @@ fn bad_arguments_are_one_line_and_create_nothing() {
         (
             vec![s(&input), "-o", s(&missing), "--x", "level", "--y", "v_inf"],
             "does not exist",
-        ),
-        (
-            vec![
-                s(&input),
-                "-o",
-                s(&over_input),
-                "--x",
-                "level",
-                "--y",
-                "v_inf",
-            ],
-            "refusing to overwrite an input",
         ),
         (
             vec![s(&input), "-o", "f.jpg", "--x", "level", "--y", "v_inf"],
@@ -329,4 +316,43 @@ fn a_sweep_without_regime_or_failure_columns_plots() {
     let svg = std::fs::read_to_string(&out).unwrap();
     assert!(svg.contains(r#"data-label="no value (1, at the bottom)""#));
     std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// A figure's data file is the figure's name with `.csv` appended
+/// (docs/interface.md, `plot`): a sweep output plotted beside itself keeps
+/// it (`grid.csv` to `grid.svg`, data `grid.svg.csv`), a PNG and a PDF of
+/// one name keep their own data, and an output whose data file would be
+/// the input is refused with nothing written.
+#[test]
+fn a_figure_data_file_never_overwrites_an_input_or_another_figure_data() {
+    let d = dir("data_names");
+    let input = d.join("grid.csv");
+    std::fs::write(&input, SWEEP_CSV).unwrap();
+    let axes = ["--x", "harmonics", "--y", "v_inf"];
+    for name in ["grid.svg", "x.png", "x.pdf"] {
+        let out = d.join(name);
+        let mut args = vec![s(&input), "-o", s(&out)];
+        args.extend(axes);
+        let (code, _, err) = cli(&args);
+        assert_eq!(code, 0, "{name}: {err}");
+        assert!(d.join(format!("{name}.csv")).exists(), "{name}");
+    }
+    assert_eq!(std::fs::read_to_string(&input).unwrap(), SWEEP_CSV);
+    let png_data = std::fs::read_to_string(d.join("x.png.csv")).unwrap();
+    let pdf_data = std::fs::read_to_string(d.join("x.pdf.csv")).unwrap();
+    assert_eq!(png_data, pdf_data, "the same figure's data");
+    // An input named like the figure's data file.
+    let named = d.join("p.svg.csv");
+    std::fs::write(&named, SWEEP_CSV).unwrap();
+    let out = d.join("p.svg");
+    let mut args = vec![s(&named), "-o", s(&out)];
+    args.extend(axes);
+    let (code, _, err) = cli(&args);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("refusing to overwrite an input") && err.lines().count() == 1,
+        "{err}"
+    );
+    assert!(!out.exists());
+    assert_eq!(std::fs::read_to_string(&named).unwrap(), SWEEP_CSV);
 }

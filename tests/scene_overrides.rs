@@ -72,13 +72,19 @@ fn a_scene_on_standard_input_runs_as_from_a_file() {
     let from_stdin = stickslip_with_stdin(&["run", "-", "--json", "-q"], &text);
     let from_file = stickslip(&["run", s(&file), "--json", "-q"]);
     ok(from_stdin.clone());
-    assert_eq!(json(&from_stdin)["scene_hash"], json(&from_file)["scene_hash"]);
+    assert_eq!(
+        json(&from_stdin)["scene_hash"],
+        json(&from_file)["scene_hash"]
+    );
     assert_eq!(json(&from_stdin)["v_inf"], json(&from_file)["v_inf"]);
     // A bad scene on standard input is named as such.
     let mut bad = stickslip::Scene::default();
     bad.motor.slider_mass = -1.0;
     let err = failure(stickslip_with_stdin(&["run", "-"], &bad.to_toml()));
-    assert!(err.contains("<stdin>") && err.contains("slider_mass"), "{err}");
+    assert!(
+        err.contains("<stdin>") && err.contains("slider_mass"),
+        "{err}"
+    );
     assert_eq!(err.lines().count(), 1, "{err}");
 }
 
@@ -120,7 +126,12 @@ fn every_command_that_reads_a_scene_checks_its_overrides() {
         vec!["signal"],
         vec!["characteristic", "-o", s(&out)],
         vec!["optimize", "-o", s(&out)],
-        vec!["plot", "examples/scenes/paper_default.toml", "-o", s(&figure)],
+        vec![
+            "plot",
+            "examples/scenes/paper_default.toml",
+            "-o",
+            s(&figure),
+        ],
         vec!["compare", "examples/scenes/paper_default.toml", data],
         vec!["sweep", s(&sweep), "-o", s(&out)],
     ];
@@ -198,8 +209,14 @@ fn malformed_overrides_are_one_line_errors() {
     for (given, says) in [
         ("motor.slider_mass", "expected PATH=VALUE"),
         ("motor.slider_mas=1", "unknown field `slider_mas`"),
-        ("signal.amplitudes[0]=1", "signal.amplitudes is not in the scene"),
-        ("motor.slider_mass.x=1", "motor.slider_mass is a number, not a table"),
+        (
+            "signal.amplitudes[0]=1",
+            "signal.amplitudes is not in the scene",
+        ),
+        (
+            "motor.slider_mass.x=1",
+            "motor.slider_mass is a number, not a table",
+        ),
         ("motor.slider_mass=abc", "invalid type: string \"abc\""),
         ("motor.slider_mass=nan", "motor.slider_mass"),
         ("motor.x\r=1\n", "unknown field `x`"),

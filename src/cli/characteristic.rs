@@ -85,7 +85,7 @@ fn extension_is(path: &Path, ext: &str) -> bool {
 /// figure can be written.
 fn check_outputs(args: &CharacteristicArgs) -> Result<(), Failure> {
     let inputs: Vec<&Path> = args.scene.iter().map(PathBuf::as_path).collect();
-    let figure_csv = args.figure.as_ref().map(|f| f.with_extension("csv"));
+    let figure_csv = args.figure.as_deref().map(crate::plot::data_path);
     let outputs: Vec<&Path> = [&args.output, &args.figure, &figure_csv]
         .into_iter()
         .flatten()

@@ -123,7 +123,7 @@ fn check_outputs(args: &OptimizeArgs) -> Result<(), Failure> {
                 )
             })?;
             outputs.push((flag, path.clone()));
-            outputs.push((flag, path.with_extension("csv")));
+            outputs.push((flag, crate::plot::data_path(path)));
         }
     }
     if let Some(path) = &args.map {

@@ -157,7 +157,7 @@ fn check_output(args: &PlotArgs) -> Result<(), Failure> {
     }
     let inputs: [&Path; 1] = [&args.input];
     refuse_output_over_input(&args.output, &inputs)?;
-    refuse_output_over_input(&args.output.with_extension("csv"), &inputs)?;
+    refuse_output_over_input(&crate::plot::data_path(&args.output), &inputs)?;
     within("--dpi", args.dpi, DPI_RANGE, "pixels per inch")?;
     Ok(())
 }

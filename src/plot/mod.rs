@@ -110,19 +110,19 @@ impl Figure {
     }
 
     /// Writes the figure to `path` (format from the extension) and its CSV
-    /// beside it (`path` with extension `.csv`), each atomically. The
-    /// directory must exist. Returns the two paths.
+    /// beside it ([`data_path`]: `path` with `.csv` appended), each
+    /// atomically. The directory must exist. Returns the two paths.
     pub fn write(&self, path: &Path, style: &Style, dpi: f64) -> Result<[PathBuf; 2], PlotError> {
         let format = Format::of(path)?;
         let bytes = self.encode(format, style, dpi)?;
-        let csv = path.with_extension("csv");
+        let csv = data_path(path);
         write_atomically(path, &bytes)?;
         write_atomically(&csv, self.csv.as_bytes())?;
         Ok([path.to_owned(), csv])
     }
 
-    /// Writes `NAME.svg` and `NAME.csv` into `dir` (created if missing) in
-    /// the figure's own preset.
+    /// Writes `NAME.svg` and `NAME.svg.csv` into `dir` (created if missing)
+    /// in the figure's own preset.
     pub fn write_to(&self, dir: &Path) -> Result<[PathBuf; 2], PlotError> {
         std::fs::create_dir_all(dir).map_err(|source| PlotError::Io {
             path: dir.display().to_string(),
@@ -134,6 +134,16 @@ impl Figure {
             300.0,
         )
     }
+}
+
+/// The data file of the figure at `figure`: its name with `.csv` appended
+/// (`grid.svg` -> `grid.svg.csv`), so that it is never an input of the
+/// figure (`grid.csv` plotted to `grid.svg`) nor another figure's data
+/// (`x.png` and `x.pdf`).
+pub fn data_path(figure: &Path) -> PathBuf {
+    let mut name = figure.as_os_str().to_owned();
+    name.push(".csv");
+    PathBuf::from(name)
 }
 
 fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), PlotError> {
