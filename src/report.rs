@@ -288,6 +288,8 @@ fn steady_json(m: &mut Map<String, Value>, r: &RunReport) {
 /// An indicator with its estimate; without one (no bound holds, e.g. a
 /// grazing steady orbit) it says so instead of implying exact digits.
 fn with_estimate(value: f64, err: Option<f64>) -> String {
+    // An estimate that is not a number is no estimate (JSON: null).
+    let err = err.filter(|e| e.is_finite());
     match err {
         Some(_) => format_with_error(value, err),
         None if value.is_finite() => format!("{} ± unknown", format_with_error(value, None)),

@@ -230,3 +230,40 @@ fn malformed_overrides_are_one_line_errors() {
         assert!(!out.exists());
     }
 }
+
+/// Messages show the value given and stay one line: the unit hint of an
+/// implausible stroke reads the value given in micrometres (its decimal
+/// exponent lowered by 6), a duty too short for floating point is refused
+/// naming it (never `NaN`), and a carriage return quoted from a scene line
+/// is written escaped.
+#[test]
+fn messages_show_the_value_given_and_stay_one_line() {
+    let o = stickslip(&["run", "--set", "signal.stroke=0.0026"]);
+    let err = ok(o);
+    assert!(
+        err.contains("signal.stroke = 0.0026 m is above 1 mm")
+            && err.contains("(0.0026 um = 2.6e-9 m)"),
+        "{err}"
+    );
+    let err = ok(stickslip(&["run", "--set", "signal.stroke=25"]));
+    assert!(err.contains("(25 um = 2.5e-5 m)"), "{err}");
+    for duty in ["1e-300", "1e-60"] {
+        let set = format!("signal.duty={duty}");
+        let err = failure(stickslip(&["run", "--set", &set]));
+        assert!(
+            err.contains(&format!("signal.duty = {duty}")) && !err.contains("NaN"),
+            "{err}"
+        );
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
+    let dir = scratch("overrides", "carriage_return");
+    let scene = write(
+        &dir,
+        "cr.toml",
+        "[motor]\nslider_mas = -1.0 # a comment\r with a carriage return\n",
+    );
+    let o = stickslip(&["run", s(&scene)]);
+    let err = failure(o);
+    assert!(!err.contains('\r') && err.contains("\\r"), "{err:?}");
+    assert_eq!(err.lines().count(), 1, "{err:?}");
+}

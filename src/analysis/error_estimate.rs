@@ -119,6 +119,7 @@ pub(crate) fn estimate_errors(
     steady: &SteadyState,
     transient: Option<&Transient>,
     ind: &SteadyIndicators,
+    contact_force: f64,
     (from_orbit, covered): (bool, bool),
 ) -> ErrorEstimate {
     let period = signal.period();
@@ -175,10 +176,12 @@ pub(crate) fn estimate_errors(
             .smoothness
             .is_finite()
             .then(|| dv / spread + ind.smoothness * (2.0 * dvel / spread + rounding_rel)),
-        // delta = x_p / (F_c s) with x_p = v_inf T.
+        // delta = x_p / (F_c s) with x_p = v_inf T: the step's error over
+        // F_c s (also where the step, and delta, are 0), and delta's
+        // relative error from the sliding distance.
         durability: ind.durability.is_finite().then(|| {
-            ind.durability.abs()
-                * (dv * period / stats.step.abs() + d_sliding / sliding + rounding_rel)
+            dv * period / (contact_force * sliding)
+                + ind.durability.abs() * (d_sliding / sliding + rounding_rel)
         }),
         // W_f = mu_d F_c s.
         friction_energy: Some(if sliding > 0.0 {

@@ -98,7 +98,7 @@ pub(crate) fn compare(args: CompareArgs, streams: &mut Streams<'_>) -> u8 {
     match run(args, streams) {
         Ok(pass) => u8::from(!pass),
         Err(message) => {
-            let _ = writeln!(streams.err, "stickslip: {}", message.replace('\n', " "));
+            let _ = writeln!(streams.err, "stickslip: {}", super::one_line(&message));
             EXIT_BAD_INPUT
         }
     }

@@ -134,10 +134,26 @@ where
     match outcome {
         Ok(code) => code,
         Err(message) => {
-            let _ = writeln!(streams.err, "stickslip: {}", message.replace('\n', " "));
+            let _ = writeln!(streams.err, "stickslip: {}", one_line(&message));
             1
         }
     }
+}
+
+/// A message as one line: line breaks become spaces, and every other
+/// control character (a carriage return quoted from a scene line) is
+/// written escaped (`\r`), so that the message stays one line on any
+/// terminal.
+pub(crate) fn one_line(message: &str) -> String {
+    let mut out = String::with_capacity(message.len());
+    for c in message.chars() {
+        match c {
+            '\n' => out.push(' '),
+            c if c.is_control() => out.extend(c.escape_debug()),
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 /// Writes a command's result to the output stream. A reader that has gone

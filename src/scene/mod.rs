@@ -385,6 +385,22 @@ impl Scene {
                     path: origin.to_owned(),
                     message: parse_message(text, &e),
                 })?;
+        // A table left to its default gets it written out, so that an
+        // override changes one field of it.
+        let defaults: toml::Table = Scene {
+            actuator: None,
+            ..Scene::default()
+        }
+        .to_toml()
+        .parse()
+        .expect("the default scene writes as TOML");
+        for o in overrides {
+            if !table.contains_key(o.table())
+                && let Some(default) = defaults.get(o.table())
+            {
+                table.insert(o.table().to_owned(), default.clone());
+            }
+        }
         overrides::apply(&mut table, overrides).map_err(|source| SceneError::Override {
             path: origin.to_owned(),
             source,

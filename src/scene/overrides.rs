@@ -12,8 +12,11 @@
 //!
 //! **Contract.** The overrides are applied in order to the scene's TOML
 //! table before it is read, so an overridden field is checked exactly as if
-//! the file held it, with the same one-line messages. Missing tables are
-//! created (`actuator.mass` on a scene without `[actuator]`); an index must
+//! the file held it, with the same one-line messages. A table the scene
+//! leaves to its default (`[motor]`, `[signal]`, `[run]`, `[outputs]`) is
+//! written out with that default first, so `motor.mu_dynamic=0` changes
+//! one field of the default motor; other missing tables are created empty
+//! (`actuator.mass` on a scene without `[actuator]`); an index must
 //! lie within its array; a key cannot descend into a value that is not a
 //! table. The drive of a signal is given by exactly one of `kappa`,
 //! `sqrt_kappa`, `frequency` and `f_max`: setting one removes the others
@@ -70,6 +73,11 @@ impl fmt::Display for Override {
 }
 
 impl Override {
+    /// The first key of the path: the scene table it sets a field of.
+    pub(super) fn table(&self) -> &str {
+        &self.path[0].key
+    }
+
     /// The dotted path, as the scene's messages name fields.
     pub fn path(&self) -> String {
         self.path
@@ -322,8 +330,9 @@ mod tests {
             assert!(e.starts_with("--set ") && e.contains(says), "{given}: {e}");
             assert!(!e.contains('\n'));
         }
-        let e = "motor.x\r=1".parse::<Override>().unwrap_err().to_string();
-        assert!(!e.contains('\r'), "{e}");
+        // A control character inside a key is written escaped.
+        let e = "mo\rtor.x=1".parse::<Override>().unwrap_err().to_string();
+        assert!(!e.contains('\r') && e.contains("\\r"), "{e}");
     }
 
     #[test]

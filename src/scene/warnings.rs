@@ -116,11 +116,23 @@ impl Scene {
             } else {
                 return None;
             };
-            Some(format!(
-                "is {bound}; {noun} are in metres ({} um = {}e-6)",
-                Num(value),
-                Num(value)
-            ))
+            Some(if value > hi {
+                // The value given, read in micrometres: its decimal
+                // exponent lowered by 6 in the text, not by a rounded
+                // product.
+                let scientific = format!("{value:e}");
+                let (mantissa, exponent) = scientific
+                    .split_once('e')
+                    .expect("`{:e}` writes an exponent");
+                let exponent: i32 = exponent.parse().expect("an integer exponent");
+                format!(
+                    "is {bound}; {noun} are in metres ({} um = {mantissa}e{} m)",
+                    Num(value),
+                    exponent - 6
+                )
+            } else {
+                format!("is {bound}; {noun} are in metres (25 um = 2.5e-5 m)")
+            })
         };
         match &self.signal {
             SignalSpec::Ideal(shape) | SignalSpec::Fourier { shape, .. } => {

@@ -236,6 +236,17 @@ impl FourierSignal {
         motor: &Motor,
     ) -> Result<Self, ParamError> {
         let raw = Self::partial_sum(shape, n, sigma, motor);
+        let stroke = raw.stroke();
+        if !(stroke.is_finite() && stroke > 0.0) && shape.duty < 1.0 {
+            // The coefficients (12)-(14) of so short a rise leave floating
+            // point (they overflow, or the harmonics cancel to nothing).
+            return Err(ParamError::out_of_range(
+                "signal.duty",
+                shape.duty,
+                "a rise this short leaves the harmonics without a stroke in floating point; \
+                 give a longer rise",
+            ));
+        }
         raw.scaled_to_stroke(shape.stroke)?.shifted_to_minimum()
     }
 
@@ -590,13 +601,18 @@ impl FourierSignal {
     /// All amplitudes scaled so that the stroke equals `stroke` (m).
     pub fn scaled_to_stroke(&self, stroke: f64) -> Result<Self, ParamError> {
         let actual = self.stroke();
-        if actual.is_nan() || actual <= 0.0 {
+        if !actual.is_finite() || actual <= 0.0 {
             return Err(ParamError::Inconsistent {
                 field: "signal".to_owned(),
-                reason: format!(
-                    "the signal has no stroke to scale (max - min = {} m)",
-                    Num(actual)
-                ),
+                reason: if actual.is_finite() {
+                    format!(
+                        "the signal has no stroke to scale (max - min = {} m)",
+                        Num(actual)
+                    )
+                } else {
+                    "the signal's amplitudes are beyond floating point: no stroke to scale"
+                        .to_owned()
+                },
             });
         }
         let f = stroke / actual;

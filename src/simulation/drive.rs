@@ -281,6 +281,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         &steady,
         transient.as_ref(),
         &indicators,
+        motor.contact_force(),
         (from_orbit, certificate.kind == CertificateKind::Covering),
     );
     if error.v_inf.is_none() && steady.stats.events.grazing > 0 {
