@@ -221,8 +221,19 @@ pub enum SceneError {
         /// The path given (or `<string>`).
         path: String,
         /// The override and what is wrong with it.
-        source: crate::scene::OverrideError,
+        source: OverrideError,
     },
+}
+
+/// A malformed override `PATH=VALUE` (`--set`, `crate::scene::Override`),
+/// or one that does not fit the scene's table.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("--set {given}: {reason}")]
+pub struct OverrideError {
+    /// The override as given (control characters escaped).
+    pub given: String,
+    /// What is wrong with it.
+    pub reason: String,
 }
 
 /// Sweep files, sweep outputs and their merging.

@@ -23,6 +23,7 @@
 //! from the `[signal]` table, so an override replaces whichever the scene
 //! gave.
 
+pub use crate::error::OverrideError;
 use std::fmt;
 use std::str::FromStr;
 use toml::{Table, Value};
@@ -45,16 +46,6 @@ pub struct Override {
     value: Value,
     /// As given, for messages.
     text: String,
-}
-
-/// A malformed override, or one that does not fit the scene's table.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("--set {given}: {reason}")]
-pub struct OverrideError {
-    /// The override as given (control characters escaped).
-    pub given: String,
-    /// What is wrong with it.
-    pub reason: String,
 }
 
 impl OverrideError {
