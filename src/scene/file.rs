@@ -340,7 +340,7 @@ fn drive(t: &SignalTable) -> Result<Drive, ParamError> {
             return Err(ParamError::out_of_range(
                 &format!("signal.{name}"),
                 *value,
-                format!("{ONE_OF}, not two (also given: {})", others.join(", ")),
+                format!("{ONE_OF} (also given: {})", others.join(", ")),
             ));
         }
     };
