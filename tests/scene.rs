@@ -459,7 +459,7 @@ fn fields_of_another_kind_are_refused() {
     for (extra, field) in [
         ("harmonics = 2", "signal.harmonics"),
         ("sigma = true", "signal.sigma"),
-        ("frequency = 100", "signal.frequency"),
+        ("f_max = 100", "signal.f_max"),
         ("amplitudes = [1e-6]", "signal.amplitudes"),
         ("shift_to_minimum = false", "signal.shift_to_minimum"),
     ] {

@@ -376,6 +376,14 @@ fn signal_spec(t: SignalTable) -> Result<SignalSpec, ParamError> {
                     ("shift_to_minimum", t.shift_to_minimum.is_some()),
                 ],
             )?;
+            if let (SignalKind::Ideal, Some(f)) = (kind, t.f_max) {
+                return Err(ParamError::out_of_range(
+                    "signal.f_max",
+                    f,
+                    "not used with kind = \"ideal\" (its spectrum has no highest frequency); \
+                     give signal.frequency",
+                ));
+            }
             let shape = IdealShape {
                 stroke: required(t.stroke, "stroke", kind)?,
                 drive: drive(&t)?,
