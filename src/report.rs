@@ -604,7 +604,7 @@ pub(crate) fn sensitivities_text(
         Held::Frequency => writeln!(
             out,
             "sensitivities held fixed: the drive frequency f0 = {f0} Hz (a change of the motor \
-             keeps it; --sensitivities-at kappa holds kappa instead)"
+             keeps it; for kind = \"fourier\" or \"ideal\" --sensitivities-at kappa holds kappa)"
         ),
         Held::Kappa => writeln!(
             out,
