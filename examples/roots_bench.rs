@@ -16,9 +16,9 @@ use std::time::Instant;
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
 use stickslip::FourierSignal;
-use stickslip::IdealShape;
 use stickslip::Motor;
 use stickslip::numerics::TrigPoly;
+use stickslip::{Drive, IdealShape};
 
 fn median(mut xs: Vec<f64>) -> f64 {
     xs.sort_by(f64::total_cmp);
@@ -51,7 +51,7 @@ fn fourier_poly(n: usize) -> TrigPoly {
     let motor = Motor::default();
     let shape = IdealShape {
         stroke: 25e-6,
-        kappa: 36.0,
+        drive: Drive::Kappa(36.0),
         duty: 1.0,
     };
     FourierSignal::approximate_ideal(shape, n, true, &motor)

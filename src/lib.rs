@@ -108,7 +108,9 @@ pub use scene::{
     RunSettings, Scene, Warning, read_input,
 };
 pub use signal::description::SignalDescription;
-pub use signal::{FourierSignal, IdealShape, MAX_HARMONICS, RodState, Signal, SignalSpec};
+pub use signal::{
+    Drive, FourierSignal, Held, IdealShape, MAX_HARMONICS, RodState, Signal, SignalSpec,
+};
 pub use simulation::{
     CertificateKind, ErrorEstimate, Outcome, Regime, RunReport, SignalCache,
     SteadyStateCertificate, SteadyStateCheck, Unsettled, build, run, run_with, sensitivities,

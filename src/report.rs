@@ -18,6 +18,7 @@ use crate::provenance;
 use crate::scene::Scene;
 use crate::scene::SceneFile;
 use crate::sensitivity::{Derivative, Sensitivities};
+use crate::signal::Held;
 use crate::simulation::{CertificateKind, Outcome, RunReport, Unsettled};
 use serde_json::{Map, Value, json};
 use std::fmt::Write as _;
@@ -110,6 +111,14 @@ pub fn to_json(outcome: &Outcome, scene: &Scene) -> Value {
         }
         Outcome::NotConverged(state) => {
             unsettled_json(&mut m, state, scene.run.verify_steady_state)
+        }
+    }
+    // The drive frequency with the digits the scene gives (a frequency
+    // drive's f_0 itself, not 1 / (1 / f_0)); 1 / T for kappa.
+    if let Ok(motor) = crate::motor::Motor::new(scene.motor) {
+        let f0 = scene.signal.f0(&motor);
+        if f0.is_finite() {
+            m.insert("f0".into(), number(f0));
         }
     }
     times_json(&mut m, outcome.times());
@@ -544,14 +553,17 @@ fn steady_text(r: &RunReport) -> String {
 /// (docs/interface.md section 3): one object per parameter with `value`
 /// and `unit`, and `left`, `right`, `change`, `change_at` where the event
 /// structure changes; `null` (and `sensitivities_unavailable` with the
-/// reason) when there are none.
+/// reason) when there are none; and `held_fixed`, what the derivatives
+/// hold of the drive (`"kappa"` or `"frequency"`; `f0` is beside it).
 pub(crate) fn add_sensitivities_json(
     object: &mut Value,
     sensitivities: &Result<Sensitivities, String>,
+    held_fixed: Held,
 ) {
     let Value::Object(m) = object else {
         return;
     };
+    m.insert("held_fixed".into(), json!(held_fixed.name()));
     match sensitivities {
         Ok(s) => {
             let mut entries = Map::new();
@@ -581,9 +593,27 @@ pub(crate) fn add_sensitivities_json(
     }
 }
 
-/// The sensitivities as lines of the text summary.
-pub(crate) fn sensitivities_text(sensitivities: &Result<Sensitivities, String>) -> String {
+/// The sensitivities as lines of the text summary, after the line saying
+/// what they hold of the drive at the drive frequency `f0` (Hz).
+pub(crate) fn sensitivities_text(
+    sensitivities: &Result<Sensitivities, String>,
+    held_fixed: Held,
+    f0: f64,
+) -> String {
     let mut out = String::new();
+    let f0 = format_with_error(f0, None);
+    let _ = match held_fixed {
+        Held::Frequency => writeln!(
+            out,
+            "sensitivities held fixed: the drive frequency f0 = {f0} Hz (a change of the motor \
+             keeps it; for kind = \"fourier\" or \"ideal\" --sensitivities-at kappa holds kappa)"
+        ),
+        Held::Kappa => writeln!(
+            out,
+            "sensitivities held fixed: kappa = a_R / a_0, at f0 = {f0} Hz (a change of a_0 \
+             retunes the drive, f0 ∝ sqrt(a_0); --sensitivities-at frequency holds f0 instead)"
+        ),
+    };
     match sensitivities {
         Ok(s) => {
             let _ = writeln!(out, "sensitivities of v_inf:");

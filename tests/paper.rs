@@ -4,7 +4,7 @@
 mod common;
 
 use common::*;
-use stickslip::{FourierSignal, IdealShape};
+use stickslip::{Drive, FourierSignal, IdealShape};
 use stickslip::{Scene, Signal};
 
 /// Section 7: `n = 2`, `sqrt(kappa) = 6`, sigma factors: `v_inf = 0.297 m/s`,
@@ -25,7 +25,7 @@ fn gibbs_overshoot_approaches_the_papers_value() {
     let motor = paper_motor();
     let shape = IdealShape {
         stroke: 25e-6,
-        kappa: 1.0,
+        drive: Drive::Kappa(1.0),
         duty: 1.0,
     };
     let gibbs = 0.089_489_872_236;

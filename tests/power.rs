@@ -16,7 +16,7 @@ use approx::assert_relative_eq;
 use std::f64::consts::PI;
 use stickslip::Motor;
 use stickslip::{ActuatorParams, input_power};
-use stickslip::{FourierSignal, IdealShape, MotorParams, Signal, SignalSpec};
+use stickslip::{Drive, FourierSignal, IdealShape, MotorParams, Signal, SignalSpec};
 
 /// (29) and (30) exactly as printed, for velocity amplitude `v_hat` at
 /// angular frequency `w`.
@@ -238,7 +238,7 @@ fn paper_scaling_keeps_the_shape_and_gives_no_single_power_law() {
     let motor = Motor::default();
     let shape = |stroke| IdealShape {
         stroke,
-        kappa: 36.0,
+        drive: Drive::Kappa(36.0),
         duty: 1.0,
     };
     let lambda = 4.0;
@@ -342,7 +342,7 @@ fn apparent_power_matches_the_reference_grid() {
         let vpp: f64 = cols[9].parse().unwrap();
         let shape = IdealShape {
             stroke: 25e-6,
-            kappa: sqrt_kappa * sqrt_kappa,
+            drive: Drive::Kappa(sqrt_kappa * sqrt_kappa),
             duty: 1.0,
         };
         let signal = FourierSignal::approximate_ideal(shape, n, sigma, &motor).unwrap();

@@ -7,15 +7,15 @@
 use proptest::prelude::*;
 use stickslip::Indicator;
 use stickslip::RunReport;
+use stickslip::{Drive, IdealShape, SignalSpec};
 use stickslip::{Error, Motor, MotorParams, Scene, Signal, SimulationError};
 use stickslip::{EventEngine, EventOptions};
-use stickslip::{IdealShape, SignalSpec};
 
 fn signal_spec() -> impl Strategy<Value = SignalSpec> {
     let shape = (-9.0f64..-3.0, -2.0f64..2.0, 0.2f64..1.0, any::<bool>()).prop_map(
         |(stroke, kappa, duty, continuous)| IdealShape {
             stroke: 10f64.powf(stroke),
-            kappa: 10f64.powf(kappa),
+            drive: Drive::Kappa(10f64.powf(kappa)),
             duty: if continuous { 1.0 } else { duty },
         },
     );

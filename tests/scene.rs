@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use stickslip::ActuatorParams;
 use stickslip::Indicator;
 use stickslip::MotorParams;
+use stickslip::{Drive, IdealShape, SignalSpec};
 use stickslip::{EngineKind, Outputs, RunSettings, Scene};
-use stickslip::{IdealShape, SignalSpec};
 use stickslip::{ParamError, SceneError};
 
 fn scenes_dir() -> PathBuf {
@@ -139,7 +139,7 @@ fn example_scenes_hold_what_their_names_say() {
         stick_slip.signal,
         SignalSpec::Ideal(IdealShape {
             stroke: 25e-6,
-            kappa: 1.0,
+            drive: Drive::Kappa(1.0),
             duty: 1.0
         })
     );
@@ -151,7 +151,9 @@ fn example_scenes_hold_what_their_names_say() {
     );
 
     let discrete = example("ideal_discrete.toml");
-    assert!(matches!(discrete.signal, SignalSpec::Ideal(s) if s.duty == 0.5 && s.kappa == 1.0));
+    assert!(
+        matches!(discrete.signal, SignalSpec::Ideal(s) if s.duty == 0.5 && s.drive == Drive::Kappa(1.0))
+    );
 
     match example("harmonics.toml").signal {
         SignalSpec::Harmonics {
@@ -179,7 +181,7 @@ fn example_scenes_hold_what_their_names_say() {
     let heavy = example("stick_heavy.toml");
     assert!(matches!(
         heavy.signal,
-        SignalSpec::Fourier { shape, harmonics: 5, sigma: true } if shape.kappa == 0.36
+        SignalSpec::Fourier { shape, harmonics: 5, sigma: true } if shape.drive == Drive::Kappa(0.36)
     ));
     assert!(heavy.outputs.trajectory && heavy.outputs.events);
 }
@@ -235,7 +237,7 @@ fn defaults_of_optional_fields() {
         SignalSpec::Fourier { shape, sigma, .. } => {
             assert!(!sigma, "sigma defaults to false");
             assert_eq!(shape.duty, 1.0);
-            assert_eq!(shape.kappa, 4.0);
+            assert_eq!(shape.drive, Drive::Kappa(4.0));
         }
         other => panic!("{other:?}"),
     }
@@ -255,7 +257,9 @@ fn defaults_of_optional_fields() {
 #[test]
 fn sqrt_kappa_is_squared() {
     let scene = parse(FOURIER).unwrap();
-    assert!(matches!(scene.signal, SignalSpec::Fourier { shape, .. } if shape.kappa == 36.0));
+    assert!(
+        matches!(scene.signal, SignalSpec::Fourier { shape, .. } if shape.drive == Drive::Kappa(36.0))
+    );
 }
 
 #[test]
@@ -455,7 +459,7 @@ fn fields_of_another_kind_are_refused() {
     for (extra, field) in [
         ("harmonics = 2", "signal.harmonics"),
         ("sigma = true", "signal.sigma"),
-        ("frequency = 100", "signal.frequency"),
+        ("f_max = 100", "signal.f_max"),
         ("amplitudes = [1e-6]", "signal.amplitudes"),
         ("shift_to_minimum = false", "signal.shift_to_minimum"),
     ] {
@@ -686,7 +690,7 @@ proptest! {
         trajectory in any::<bool>(),
         events in any::<bool>(),
     ) {
-        let shape = IdealShape { stroke, kappa, duty };
+        let shape = IdealShape::with_kappa(stroke, kappa, duty);
         let signal = if ideal {
             SignalSpec::Ideal(shape)
         } else {

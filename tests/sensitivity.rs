@@ -19,7 +19,7 @@ use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use stickslip::Indicator;
 use stickslip::Outcome;
 use stickslip::sensitivity::{self, ChangeKind, Derivative, Parameter};
-use stickslip::{IdealShape, SignalSpec};
+use stickslip::{Drive, IdealShape, SignalSpec};
 use stickslip::{Motor, MotorParams, Scene};
 
 /// The scene with `parameter` set to `value`.
@@ -57,7 +57,7 @@ fn signal_spec() -> impl Strategy<Value = SignalSpec> {
     let shape = (-7.0f64..-4.0, -1.0f64..1.5, 0.2f64..0.95, any::<bool>()).prop_map(
         |(stroke, kappa, duty, continuous)| IdealShape {
             stroke: 10f64.powf(stroke),
-            kappa: 10f64.powf(kappa),
+            drive: Drive::Kappa(10f64.powf(kappa)),
             duty: if continuous { 1.0 } else { duty },
         },
     );

@@ -352,7 +352,7 @@ fn bad_sweep_files_are_refused_before_anything_runs() {
         ("[axes]\nsigma = []\n", "axes.sigma: is empty"),
         (
             "[axes]\nlevel = [3]\nkappa = [1]\n",
-            "at most one of axes.level, axes.sqrt_kappa and axes.kappa",
+            "at most one of axes.level, axes.sqrt_kappa, axes.kappa, axes.frequency and axes.f_max",
         ),
         (
             "[axes]\nmu_dynamic = [0.1, 0.2]\n",

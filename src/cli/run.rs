@@ -2,6 +2,8 @@
 //! as a summary or as one JSON object (keys in `docs/interface.md`).
 
 use super::{Failure, SceneOptions, Streams, refuse_outputs, write_out};
+use crate::motor::Motor;
+use crate::signal::{Held, SignalSpec};
 use crate::{report, simulation};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -22,6 +24,10 @@ pub(crate) struct RunArgs {
     /// motor's and the signal's parameters (docs/model.md section 14).
     #[arg(long)]
     sensitivities: bool,
+    /// With --sensitivities: what the derivatives hold of the drive, its
+    /// frequency f0 or kappa (default: what the scene gives).
+    #[arg(long, value_name = "frequency|kappa", requires = "sensitivities")]
+    sensitivities_at: Option<HeldArg>,
     #[command(flatten)]
     options: SceneOptions,
     #[command(flatten)]
@@ -30,6 +36,24 @@ pub(crate) struct RunArgs {
     /// `--periods`, `--periods-series`; docs/interface.md).
     #[command(flatten)]
     export: ExportArgs,
+}
+
+/// The values of `--sensitivities-at`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub(crate) enum HeldArg {
+    /// The drive frequency f0 (the period).
+    Frequency,
+    /// kappa = a_R / a_0 (the period follows a_0).
+    Kappa,
+}
+
+impl From<HeldArg> for Held {
+    fn from(h: HeldArg) -> Held {
+        match h {
+            HeldArg::Frequency => Held::Frequency,
+            HeldArg::Kappa => Held::Kappa,
+        }
+    }
 }
 
 /// Flags of the exact trajectory export (implemented in [`crate::export`]).
@@ -72,6 +96,23 @@ pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failur
     refuse_outputs(&outputs, &inputs)?;
     let mut scene = super::load_scene(args.scene.as_deref(), &args.set)?;
     args.options.apply(&mut scene, streams);
+    // The scene whose derivatives are taken: the drive as given, or given
+    // the other way (the same signal) to hold the other quantity.
+    let held = args.sensitivities_at.map(Held::from);
+    let mut at = scene.clone();
+    if let Some(held) = held {
+        if held == Held::Kappa && matches!(scene.signal, SignalSpec::Harmonics { .. }) {
+            return Err(
+                "--sensitivities-at = kappa: the signal (kind = \"harmonics\") is given by its \
+                 frequency and has no kappa"
+                    .to_owned(),
+            );
+        }
+        let motor = Motor::new(scene.motor).map_err(|e| e.to_string())?;
+        at.signal = scene.signal.holding(held, &motor);
+    }
+    let held = at.signal.held();
+    let f0 = Motor::new(at.motor).map_or(f64::NAN, |m| at.signal.f0(&m));
     let request = crate::export::TrajectoryRequest {
         trajectory: e.trajectory,
         times: e.times,
@@ -91,13 +132,13 @@ pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failur
     }
     let outcome = simulation::simulate(&scene).map_err(|e| e.to_string())?;
     let sensitivities = args.sensitivities.then(|| match outcome.report() {
-        Some(r) => simulation::sensitivities(&scene, r).map_err(|e| e.to_string()),
+        Some(r) => simulation::sensitivities(&at, r).map_err(|e| e.to_string()),
         None => Err(format!("no periodic steady state ({})", outcome.regime())),
     });
     let text = if args.json {
         let mut value = report::to_json(&outcome, &scene);
         if let Some(s) = &sensitivities {
-            report::add_sensitivities_json(&mut value, s);
+            report::add_sensitivities_json(&mut value, s, held);
         }
         let mut text = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
         text.push('\n');
@@ -105,7 +146,7 @@ pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failur
     } else {
         let mut text = report::to_text(&outcome);
         if let Some(s) = &sensitivities {
-            text.push_str(&report::sensitivities_text(s));
+            text.push_str(&report::sensitivities_text(s, held, f0));
         }
         text
     };

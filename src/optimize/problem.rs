@@ -145,11 +145,7 @@ impl Problem {
         let a0 = crate::motor::Motor::new(self.base.motor).ok()?.a_0();
         let kappa = 2.0 * self.stroke * self.f0 * self.f0 / a0;
         (a0 > 0.0 && kappa.is_finite() && kappa > 0.0).then_some(SignalSpec::Fourier {
-            shape: IdealShape {
-                stroke: self.stroke,
-                kappa,
-                duty: 1.0,
-            },
+            shape: IdealShape::with_kappa(self.stroke, kappa, 1.0),
             harmonics: self.harmonics,
             sigma,
         })

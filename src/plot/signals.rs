@@ -32,11 +32,7 @@ const SAMPLES: usize = 1201;
 const STROKE: f64 = 25e-6;
 
 fn shape(kappa: f64, duty: f64) -> IdealShape {
-    IdealShape {
-        stroke: STROKE,
-        kappa,
-        duty,
-    }
+    IdealShape::with_kappa(STROKE, kappa, duty)
 }
 
 /// The stroke-scaled, shifted signal the simulator uses.

@@ -6,7 +6,7 @@ use crate::error::{Num, ParamError};
 use crate::indicator::Indicator;
 use crate::motor::MotorParams;
 use crate::power::ActuatorParams;
-use crate::signal::{IdealShape, MAX_HARMONICS, SignalSpec};
+use crate::signal::{Drive, IdealShape, MAX_HARMONICS, SignalSpec};
 use serde::{Deserialize, Serialize};
 
 /// The scene file as written: every table and optional field as an
@@ -104,6 +104,9 @@ pub struct SignalTable {
     /// `f_0`, Hz.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub frequency: Option<f64>,
+    /// `f_max = n f_0`, Hz (`fourier` only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub f_max: Option<f64>,
     /// `d_k`, m.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub amplitudes: Option<Vec<f64>>,
@@ -264,6 +267,7 @@ fn empty_signal_table(kind: SignalKind) -> SignalTable {
         sigma: None,
         duty: None,
         frequency: None,
+        f_max: None,
         amplitudes: None,
         phases: None,
         scale_to_stroke: None,
@@ -271,10 +275,19 @@ fn empty_signal_table(kind: SignalKind) -> SignalTable {
     }
 }
 
+/// The shape with its drive written as the scene gave it (`sqrt_kappa` as
+/// `kappa`).
 fn shape_table(kind: SignalKind, shape: &IdealShape) -> SignalTable {
+    let (kappa, frequency, f_max) = match shape.drive {
+        Drive::Kappa(k) => (Some(k), None, None),
+        Drive::Frequency(f) => (None, Some(f), None),
+        Drive::FMax(f) => (None, None, Some(f)),
+    };
     SignalTable {
         stroke: Some(shape.stroke),
-        kappa: Some(shape.kappa),
+        kappa,
+        frequency,
+        f_max,
         ..empty_signal_table(kind)
     }
 }
@@ -297,32 +310,57 @@ fn required<T>(value: Option<T>, name: &str, kind: SignalKind) -> Result<T, Para
     })
 }
 
-/// `kappa` from exactly one of `kappa` and `sqrt_kappa`.
-fn kappa(kappa: Option<f64>, sqrt_kappa: Option<f64>) -> Result<f64, ParamError> {
-    match (kappa, sqrt_kappa) {
-        (Some(k), None) => Ok(k),
-        (None, Some(s)) => {
-            ParamError::positive("signal.sqrt_kappa", s)?;
-            let k = s * s;
-            if k.is_finite() && k > 0.0 {
-                Ok(k)
-            } else {
-                Err(ParamError::out_of_range(
-                    "signal.sqrt_kappa",
-                    s,
-                    format!("its square kappa = {} must be positive and finite", Num(k)),
-                ))
-            }
+/// The drive from exactly one of `kappa`, `sqrt_kappa` (as
+/// `kappa = sqrt_kappa^2`), `frequency` and `f_max`.
+fn drive(t: &SignalTable) -> Result<Drive, ParamError> {
+    const ONE_OF: &str = "give exactly one of signal.kappa, signal.sqrt_kappa, signal.frequency \
+                          (f_0, Hz) and signal.f_max (Hz)";
+    let given: Vec<(&str, f64)> = [
+        ("kappa", t.kappa),
+        ("sqrt_kappa", t.sqrt_kappa),
+        ("frequency", t.frequency),
+        ("f_max", t.f_max),
+    ]
+    .into_iter()
+    .filter_map(|(name, value)| value.map(|v| (name, v)))
+    .collect();
+    let (name, value) = match given.as_slice() {
+        [] => {
+            return Err(ParamError::Inconsistent {
+                field: "signal.kappa".to_owned(),
+                reason: format!("missing: {ONE_OF}"),
+            });
         }
-        (Some(_), Some(_)) => Err(ParamError::Inconsistent {
-            field: "signal.kappa".to_owned(),
-            reason: "give exactly one of signal.kappa and signal.sqrt_kappa, not both".to_owned(),
-        }),
-        (None, None) => Err(ParamError::Inconsistent {
-            field: "signal.kappa".to_owned(),
-            reason: "missing: give exactly one of signal.kappa and signal.sqrt_kappa".to_owned(),
-        }),
-    }
+        [one] => *one,
+        [(name, value), rest @ ..] => {
+            let others: Vec<String> = rest
+                .iter()
+                .map(|(n, v)| format!("signal.{n} = {}", Num(*v)))
+                .collect();
+            return Err(ParamError::out_of_range(
+                &format!("signal.{name}"),
+                *value,
+                format!("{ONE_OF} (also given: {})", others.join(", ")),
+            ));
+        }
+    };
+    ParamError::positive(&format!("signal.{name}"), value)?;
+    Ok(match name {
+        "kappa" => Drive::Kappa(value),
+        "sqrt_kappa" => {
+            let k = value * value;
+            if !(k.is_finite() && k > 0.0) {
+                return Err(ParamError::out_of_range(
+                    "signal.sqrt_kappa",
+                    value,
+                    format!("its square kappa = {} must be positive and finite", Num(k)),
+                ));
+            }
+            Drive::Kappa(k)
+        }
+        "frequency" => Drive::Frequency(value),
+        _ => Drive::FMax(value),
+    })
 }
 
 fn signal_spec(t: SignalTable) -> Result<SignalSpec, ParamError> {
@@ -332,16 +370,23 @@ fn signal_spec(t: SignalTable) -> Result<SignalSpec, ParamError> {
             refuse_fields(
                 kind,
                 &[
-                    ("frequency", t.frequency.is_some()),
                     ("amplitudes", t.amplitudes.is_some()),
                     ("phases", t.phases.is_some()),
                     ("scale_to_stroke", t.scale_to_stroke.is_some()),
                     ("shift_to_minimum", t.shift_to_minimum.is_some()),
                 ],
             )?;
+            if let (SignalKind::Ideal, Some(f)) = (kind, t.f_max) {
+                return Err(ParamError::out_of_range(
+                    "signal.f_max",
+                    f,
+                    "not used with kind = \"ideal\" (its spectrum has no highest frequency); \
+                     give signal.frequency",
+                ));
+            }
             let shape = IdealShape {
                 stroke: required(t.stroke, "stroke", kind)?,
-                kappa: kappa(t.kappa, t.sqrt_kappa)?,
+                drive: drive(&t)?,
                 duty: t.duty.unwrap_or(1.0),
             };
             if kind == SignalKind::Ideal {
@@ -377,6 +422,7 @@ fn signal_spec(t: SignalTable) -> Result<SignalSpec, ParamError> {
                 &[
                     ("kappa", t.kappa.is_some()),
                     ("sqrt_kappa", t.sqrt_kappa.is_some()),
+                    ("f_max", t.f_max.is_some()),
                     ("harmonics", t.harmonics.is_some()),
                     ("sigma", t.sigma.is_some()),
                     ("duty", t.duty.is_some()),

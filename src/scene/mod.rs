@@ -27,7 +27,9 @@
 //! kind = "fourier"            # "fourier" | "ideal" | "harmonics"   (required)
 //! # kind = "fourier" and kind = "ideal":
 //! stroke = 25e-6              # x_Rmax, m, > 0                      (required)
-//! sqrt_kappa = 6.0            # or kappa = 36.0: exactly one of the two, > 0
+//! sqrt_kappa = 6.0            # the drive, exactly one of: kappa = 36.0, sqrt_kappa,
+//!                             # frequency (f_0, Hz), f_max (n f_0, Hz; fourier only); > 0;
+//!                             # the one given is held when the motor changes
 //! duty = 1.0                  # t_1 / T in (0, 1]; 1 = continuous   (default 1)
 //! # kind = "fourier" only:
 //! harmonics = 2               # n, 1..=256                          (required)
@@ -422,8 +424,8 @@ impl Scene {
         })
     }
 
-    /// The scene as TOML, every field written out (`kappa`, not
-    /// `sqrt_kappa`). [`Scene::from_toml_str`] reads it back to an equal
+    /// The scene as TOML, every field written out, the drive as given
+    /// (`kappa`, `frequency` or `f_max`; `sqrt_kappa` as `kappa`). [`Scene::from_toml_str`] reads it back to an equal
     /// scene.
     pub fn to_toml(&self) -> String {
         toml::to_string(&SceneFile::from(self))

@@ -5,7 +5,7 @@
 use super::Scene;
 use crate::error::Num;
 use crate::motor::Motor;
-use crate::signal::SignalSpec;
+use crate::signal::{Drive, SignalSpec};
 use std::fmt;
 
 /// Plausible strokes (and harmonic amplitudes) of a piezo inertia drive, m:
@@ -139,38 +139,74 @@ impl Scene {
                 if let Some(reason) = stroke_warning(shape.stroke, "strokes") {
                     warn("signal.stroke", shape.stroke, "m", reason);
                 }
-                if shape.kappa > PLAUSIBLE_MAX_KAPPA {
+                let drive = shape.drive;
+                if let Drive::Kappa(kappa) = drive
+                    && kappa > PLAUSIBLE_MAX_KAPPA
+                {
                     warn(
                         "signal.kappa",
-                        shape.kappa,
+                        kappa,
                         "",
                         format!(
                             "is above {}: a slider gains at most 1/(kappa duty) of the rod's \
                              peak velocity per period, so the start-up may take of the order \
                              of {} periods (run.max_periods = {}; run.time_limit_s bounds the run)",
                             Num(PLAUSIBLE_MAX_KAPPA),
-                            Num((shape.kappa * shape.duty).round()),
+                            Num((kappa * shape.duty).round()),
                             self.run.max_periods
                         ),
                     );
                 }
-                if let Ok(motor) = Motor::new(self.motor) {
-                    let (_, period) = shape.times(&motor);
-                    let f0 = 1.0 / period;
-                    if f0 > PLAUSIBLE_MAX_FREQUENCY {
+                let resolved = self.signal.shape();
+                if let (Ok(motor), Some(resolved)) = (Motor::new(self.motor), resolved) {
+                    let f0 = resolved.f0(&motor);
+                    let kappa = resolved.kappa(&motor);
+                    let field = format!("signal.{}", drive.field());
+                    if !matches!(drive, Drive::Kappa(_))
+                        && kappa.is_finite()
+                        && kappa > PLAUSIBLE_MAX_KAPPA
+                    {
                         warn(
-                            "signal.stroke",
-                            shape.stroke,
-                            "m",
+                            &field,
+                            drive.value(),
+                            "Hz",
                             format!(
-                                "with signal.kappa = {} and a_0 = {} m/s^2 gives the \
-                                 frequency f_0 = {} Hz, above 10 MHz; check the units of \
-                                 the stroke (m), the motor and kappa",
-                                Num(shape.kappa),
+                                "gives kappa = a_R / a_0 = {} (a_0 = {} m/s^2), above {}: a \
+                                 slider gains at most 1/(kappa duty) of the rod's peak velocity \
+                                 per period, so the start-up may take of the order of {} periods",
+                                Num(kappa),
                                 Num(motor.a_0()),
-                                Num(f0)
+                                Num(PLAUSIBLE_MAX_KAPPA),
+                                Num((kappa * shape.duty).round()),
                             ),
                         );
+                    }
+                    if f0 > PLAUSIBLE_MAX_FREQUENCY {
+                        match drive {
+                            Drive::Kappa(kappa) => warn(
+                                "signal.stroke",
+                                shape.stroke,
+                                "m",
+                                format!(
+                                    "with signal.kappa = {} and a_0 = {} m/s^2 gives the \
+                                     frequency f_0 = {} Hz, above 10 MHz; check the units of \
+                                     the stroke (m), the motor and kappa",
+                                    Num(kappa),
+                                    Num(motor.a_0()),
+                                    Num(f0)
+                                ),
+                            ),
+                            _ => warn(
+                                &field,
+                                drive.value(),
+                                "Hz",
+                                format!(
+                                    "gives f_0 = {} Hz, above 10 MHz; frequencies are in Hz \
+                                     (1.6 kHz = 1600)",
+                                    Num(f0)
+                                ),
+                            ),
+                        }
                     }
                 }
             }

@@ -55,7 +55,7 @@ use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::{Event, PeriodEngine, PeriodStart};
 use crate::error::{Error, SimulationError};
 use crate::motor::{Motor, MotorParams};
-use crate::signal::{Signal, SignalSpec};
+use crate::signal::{Held, Signal, SignalSpec};
 use orbit::Orbit;
 use propagate::{Context, NoDerivative};
 
@@ -148,6 +148,11 @@ pub struct Sensitivities {
     pub map_derivative: f64,
     /// The events of the steady period, phase 0 included.
     pub events: Vec<Event>,
+    /// What every derivative holds of the drive: `kappa` (the period
+    /// follows `a_0`) or the frequency (`SignalSpec::held`).
+    pub held_fixed: Held,
+    /// The drive frequency `f_0` (Hz) of the steady period.
+    pub f0: f64,
     /// One entry per parameter, in the order asked for.
     pub entries: Vec<Sensitivity>,
 }
@@ -244,6 +249,8 @@ pub fn of_steady_state(
         boundary_velocity,
         map_derivative: orbit.map_derivative,
         events: orbit.events.clone(),
+        held_fixed: spec.held(),
+        f0: spec.f0(&motor),
         entries,
     })
 }

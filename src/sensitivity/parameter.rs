@@ -2,11 +2,15 @@
 //! with its direction ([`super::tangent::Tangent`]) and its unit.
 //!
 //! Derivatives are partial derivatives with respect to the scene field,
-//! every other scene field held: a `kappa`-based signal (`ideal`,
-//! `fourier`) is built from `a_0 = mu_0 F_c / m_s`, so the friction
+//! every other scene field held, the drive as the scene gives it
+//! (`crate::signal::Drive`): an `ideal` or `fourier` signal driven by
+//! `kappa` is built from `a_0 = mu_0 F_c / m_s`, so the friction
 //! coefficient, the contact force and the mass change its period too
-//! (`T ∝ a_0^(-1/2)` at fixed stroke and `kappa`), while a `harmonics`
-//! signal does not depend on the motor. `motor.extra_acceleration` is
+//! (`T ∝ a_0^(-1/2)` at fixed stroke and `kappa`); one driven by
+//! `frequency` or `f_max`, like a `harmonics` signal, does not depend on
+//! the motor, and its stroke scales it at a fixed period. To hold the
+//! other quantity, differentiate the same signal with its drive given the
+//! other way (`SignalSpec::holding`). `motor.extra_acceleration` is
 //! `g_t` itself (a load `F` is `g_t = -F / m_s`, so `dv_inf/dF =
 //! -(dv_inf/dg_t) / m_s`).
 
@@ -14,7 +18,7 @@ use super::harmonics;
 use super::tangent::{RodTangent, Tangent};
 use crate::error::ParamError;
 use crate::motor::{Motor, MotorParams};
-use crate::signal::{Signal, SignalSpec};
+use crate::signal::{Drive, Signal, SignalSpec};
 use std::fmt;
 
 /// A scene field.
@@ -33,10 +37,13 @@ pub enum Parameter {
     /// `signal.stroke` (m): `x_Rmax`, or the stroke a `harmonics` signal is
     /// scaled to.
     Stroke,
-    /// `signal.kappa` (`kappa`-based signals).
+    /// `signal.kappa` (signals driven by `kappa`).
     Kappa,
-    /// `signal.frequency`, `f_0` (Hz; `harmonics` signals).
+    /// `signal.frequency`, `f_0` (Hz; `harmonics` signals and signals
+    /// driven by `frequency`).
     Frequency,
+    /// `signal.f_max`, `n f_0` (Hz; signals driven by `f_max`).
+    FMax,
     /// `signal.amplitudes[k]`, `d_(k+1)` (m; `harmonics` signals).
     Amplitude(usize),
     /// `signal.phases[k]`, `phi_(k+1)` (rad; `harmonics` signals).
@@ -54,6 +61,7 @@ impl fmt::Display for Parameter {
             Parameter::Stroke => write!(f, "signal.stroke"),
             Parameter::Kappa => write!(f, "signal.kappa"),
             Parameter::Frequency => write!(f, "signal.frequency"),
+            Parameter::FMax => write!(f, "signal.f_max"),
             Parameter::Amplitude(k) => write!(f, "signal.amplitudes[{k}]"),
             Parameter::Phase(k) => write!(f, "signal.phases[{k}]"),
         }
@@ -71,14 +79,15 @@ pub(super) const MOTOR: [Parameter; 5] = [
 
 impl Parameter {
     /// Every parameter of a scene with this signal: the motor's five, then
-    /// the signal's (`stroke` and `kappa` of a `kappa`-based signal;
+    /// the signal's (`stroke` and the drive, `kappa`, `frequency` or
+    /// `f_max`, of an `ideal` or `fourier` signal;
     /// `frequency`, `stroke` if scaled, every amplitude and phase of a
     /// `harmonics` signal).
     pub fn all_for(spec: &SignalSpec) -> Vec<Parameter> {
         let mut all = MOTOR.to_vec();
         match spec {
-            SignalSpec::Ideal(_) | SignalSpec::Fourier { .. } => {
-                all.extend([Parameter::Stroke, Parameter::Kappa]);
+            SignalSpec::Ideal(shape) | SignalSpec::Fourier { shape, .. } => {
+                all.extend([Parameter::Stroke, Parameter::of_drive(shape.drive)]);
             }
             SignalSpec::Harmonics {
                 amplitudes,
@@ -96,6 +105,15 @@ impl Parameter {
         all
     }
 
+    /// The parameter of a drive.
+    pub fn of_drive(drive: Drive) -> Parameter {
+        match drive {
+            Drive::Kappa(_) => Parameter::Kappa,
+            Drive::Frequency(_) => Parameter::Frequency,
+            Drive::FMax(_) => Parameter::FMax,
+        }
+    }
+
     /// The unit of `dv_inf / dtheta`.
     pub fn unit(self) -> &'static str {
         match self {
@@ -104,7 +122,7 @@ impl Parameter {
             Parameter::ContactForce => "m/(s N)",
             Parameter::SliderMass => "m/(s kg)",
             Parameter::Stroke | Parameter::Amplitude(_) => "1/s",
-            Parameter::Frequency => "m",
+            Parameter::Frequency | Parameter::FMax => "m",
             Parameter::Phase(_) => "m/(s rad)",
         }
     }
@@ -120,9 +138,10 @@ impl Parameter {
             (Parameter::Stroke, SignalSpec::Ideal(s) | SignalSpec::Fourier { shape: s, .. }) => {
                 Some(s.stroke)
             }
-            (Parameter::Kappa, SignalSpec::Ideal(s) | SignalSpec::Fourier { shape: s, .. }) => {
-                Some(s.kappa)
-            }
+            (
+                Parameter::Kappa | Parameter::Frequency | Parameter::FMax,
+                SignalSpec::Ideal(s) | SignalSpec::Fourier { shape: s, .. },
+            ) => (Parameter::of_drive(s.drive) == self).then_some(s.drive.value()),
             (
                 Parameter::Stroke,
                 SignalSpec::Harmonics {
@@ -156,8 +175,15 @@ impl Parameter {
             (Parameter::Stroke, SignalSpec::Ideal(s) | SignalSpec::Fourier { shape: s, .. }) => {
                 s.stroke = value
             }
-            (Parameter::Kappa, SignalSpec::Ideal(s) | SignalSpec::Fourier { shape: s, .. }) => {
-                s.kappa = value
+            (
+                Parameter::Kappa | Parameter::Frequency | Parameter::FMax,
+                SignalSpec::Ideal(s) | SignalSpec::Fourier { shape: s, .. },
+            ) => {
+                s.drive = match self {
+                    Parameter::Kappa => Drive::Kappa(value),
+                    Parameter::Frequency => Drive::Frequency(value),
+                    _ => Drive::FMax(value),
+                }
             }
             (
                 Parameter::Stroke,
@@ -211,8 +237,9 @@ impl Parameter {
         signal: &Signal,
     ) -> Result<Tangent, ParamError> {
         let p = motor.params();
-        let kappa_based = matches!(spec, SignalSpec::Ideal(_) | SignalSpec::Fourier { .. });
-        // d ln T / d ln a_0 = -1/2 for a kappa-based signal.
+        // The period follows a_0 only for a drive given by kappa.
+        let kappa_based = matches!(spec.drive(), Some(Drive::Kappa(_)));
+        // d ln T / d ln a_0 = -1/2 for a signal driven by kappa.
         let time_scale_of = |d_ln_a0: f64| {
             if kappa_based { -0.5 * d_ln_a0 } else { 0.0 }
         };
@@ -261,6 +288,7 @@ impl Parameter {
                     ..Tangent::none()
                 }
             }
+            // d ln T / d f_0 = -1 / f_0 = -T.
             Parameter::Frequency => Tangent {
                 rod: RodTangent {
                     time_scale: -signal.period(),
@@ -268,6 +296,17 @@ impl Parameter {
                 },
                 ..Tangent::none()
             },
+            // T = n / f_max: d ln T / d f_max = -1 / f_max.
+            Parameter::FMax => {
+                let f_max = self.value(spec, p).unwrap_or(f64::NAN);
+                Tangent {
+                    rod: RodTangent {
+                        time_scale: -1.0 / f_max,
+                        ..RodTangent::default()
+                    },
+                    ..Tangent::none()
+                }
+            }
             Parameter::Amplitude(_) | Parameter::Phase(_) => Tangent {
                 rod: harmonics::tangent(spec, signal, self)?,
                 ..Tangent::none()

@@ -254,6 +254,7 @@ impl FourierSignal {
     /// coefficients (12)-(14), times sigma factors (15) if asked. This is
     /// the signal whose Gibbs overshoot section 4 discusses.
     pub fn partial_sum(shape: IdealShape, n: usize, sigma: bool, motor: &Motor) -> Self {
+        let shape = shape.resolved(n);
         let (t1, period) = shape.times(motor);
         let t1 = if shape.duty == 1.0 { period } else { t1 };
         let (offset, mut a, mut b) = ideal_coefficients(shape.a_r(motor), t1, period, n);

@@ -23,6 +23,7 @@ pub(crate) mod fourier;
 pub(crate) mod harmonics;
 pub(crate) mod ideal;
 pub(crate) mod piecewise;
+pub(crate) mod shape;
 
 use crate::error::{Num, ParamError};
 use crate::motor::Motor;
@@ -30,18 +31,7 @@ use std::cmp::Ordering;
 
 pub use fourier::FourierSignal;
 pub(crate) use ideal::IdealSignal;
-
-/// How the rod amplitude is chosen. Given either as `kappa` (`a_R / a_0`) or
-/// as its square root, as in the paper's figures.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct IdealShape {
-    /// Stroke `x_Rmax` in m (> 0).
-    pub stroke: f64,
-    /// `kappa = a_R / a_0` (> 0).
-    pub kappa: f64,
-    /// `t_1 / T` in (0, 1]; 1 is the continuous signal.
-    pub duty: f64,
-}
+pub use shape::{Drive, Held, IdealShape};
 
 /// What a scene asks for as the rod signal (validated by [`SignalSpec::validate`]).
 #[derive(Debug, Clone, PartialEq)]
@@ -76,33 +66,6 @@ pub enum SignalSpec {
 /// (`numerics::trig_roots`, `O(n^2)`) is tested up to this degree.
 pub const MAX_HARMONICS: usize = 256;
 
-impl IdealShape {
-    fn validate(&self) -> Result<(), ParamError> {
-        ParamError::positive("signal.stroke", self.stroke)?;
-        ParamError::positive("signal.kappa", self.kappa)?;
-        ParamError::positive("signal.duty", self.duty)?;
-        if self.duty > 1.0 {
-            return Err(ParamError::out_of_range(
-                "signal.duty",
-                self.duty,
-                "must lie in (0, 1] (t_1 / T)",
-            ));
-        }
-        Ok(())
-    }
-
-    /// Rod acceleration `a_R = kappa a_0` in the acceleration phase.
-    pub fn a_r(&self, motor: &Motor) -> f64 {
-        self.kappa * motor.a_0()
-    }
-
-    /// Acceleration time `t_1 = sqrt(2 x_Rmax / a_R)` and period `T = t_1 / duty`.
-    pub fn times(&self, motor: &Motor) -> (f64, f64) {
-        let t1 = (2.0 * self.stroke / self.a_r(motor)).sqrt();
-        (t1, t1 / self.duty)
-    }
-}
-
 impl SignalSpec {
     /// The paper's default signal: `n = 2`, `sqrt(kappa) = 6`, sigma factors,
     /// continuous, stroke 25 um.
@@ -114,11 +77,7 @@ impl SignalSpec {
     /// `n` harmonics, stroke `stroke` (m) and `kappa`.
     pub fn fourier(stroke: f64, kappa: f64, n: usize, sigma: bool) -> Self {
         SignalSpec::Fourier {
-            shape: IdealShape {
-                stroke,
-                kappa,
-                duty: 1.0,
-            },
+            shape: IdealShape::with_kappa(stroke, kappa, 1.0),
             harmonics: n,
             sigma,
         }
@@ -127,17 +86,23 @@ impl SignalSpec {
     /// The ideal signal (11) with stroke `stroke` (m), `kappa` and
     /// `duty = t_1 / T`.
     pub fn ideal(stroke: f64, kappa: f64, duty: f64) -> Self {
-        SignalSpec::Ideal(IdealShape {
-            stroke,
-            kappa,
-            duty,
-        })
+        SignalSpec::Ideal(IdealShape::with_kappa(stroke, kappa, duty))
     }
 
     /// Checks every value; errors name the scene field.
     pub fn validate(&self) -> Result<(), ParamError> {
         match self {
-            SignalSpec::Ideal(shape) => shape.validate(),
+            SignalSpec::Ideal(shape) => {
+                if let Drive::FMax(f) = shape.drive {
+                    return Err(ParamError::out_of_range(
+                        "signal.f_max",
+                        f,
+                        "not used with kind = \"ideal\" (its spectrum has no highest \
+                         frequency); give signal.frequency",
+                    ));
+                }
+                shape.validate()
+            }
             SignalSpec::Fourier {
                 shape, harmonics, ..
             } => {
@@ -338,7 +303,14 @@ impl Signal {
     /// the motor's `a_0`). Validates the spec first.
     pub fn build(spec: &SignalSpec, motor: &Motor) -> Result<Self, ParamError> {
         spec.validate()?;
-        if let SignalSpec::Ideal(shape) | SignalSpec::Fourier { shape, .. } = spec {
+        // A frequency fixes the period whatever the motor; kappa needs a_0.
+        if let Some(
+            shape @ IdealShape {
+                drive: Drive::Kappa(_),
+                ..
+            },
+        ) = spec.shape()
+        {
             let a_r = shape.a_r(motor);
             let (_, period) = shape.times(motor);
             if !(a_r > 0.0 && period.is_finite() && period > 0.0) {
@@ -347,7 +319,7 @@ impl Signal {
                     reason: format!(
                         "the rod acceleration a_R = kappa a_0 = {} m/s^2 gives the period \
                          T = {} s; a kappa-based signal needs a_0 = mu_0 F_c / m_s > 0 \
-                         (for a motor without friction give the signal as kind = \"harmonics\")",
+                         (for a motor without friction give signal.frequency instead)",
                         Num(a_r),
                         Num(period)
                     ),

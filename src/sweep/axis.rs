@@ -3,7 +3,7 @@
 
 use crate::error::ParamError;
 use crate::scene::Scene;
-use crate::signal::{MAX_HARMONICS, SignalSpec};
+use crate::signal::{Drive, MAX_HARMONICS, SignalSpec};
 use ordered_float::OrderedFloat;
 use std::fmt;
 use std::str::FromStr;
@@ -17,6 +17,10 @@ pub enum Axis {
     SqrtKappa,
     /// `kappa = a_R / a_0`.
     Kappa,
+    /// `f_0` (Hz): `signal.frequency`.
+    Frequency,
+    /// `f_max = n f_0` (Hz), fourier signals.
+    FMax,
     /// Number of harmonics `n`.
     Harmonics,
     /// Lanczos sigma factors (15) on or off.
@@ -39,10 +43,12 @@ pub enum Axis {
 
 impl Axis {
     /// Every axis, in case order (the first varies slowest).
-    pub const ALL: [Axis; 12] = [
+    pub const ALL: [Axis; 14] = [
         Axis::Level,
         Axis::SqrtKappa,
         Axis::Kappa,
+        Axis::Frequency,
+        Axis::FMax,
         Axis::Harmonics,
         Axis::Sigma,
         Axis::Stroke,
@@ -60,6 +66,8 @@ impl Axis {
             Axis::Level => "level",
             Axis::SqrtKappa => "sqrt_kappa",
             Axis::Kappa => "kappa",
+            Axis::Frequency => "frequency",
+            Axis::FMax => "f_max",
             Axis::Harmonics => "harmonics",
             Axis::Sigma => "sigma",
             Axis::Stroke => "stroke",
@@ -147,7 +155,14 @@ impl Axis {
                 "harmonics"
             }
         };
-        let needs_fourier = matches!(self, Axis::Level | Axis::Harmonics | Axis::Sigma);
+        // A harmonics signal has a frequency of its own.
+        if self == Axis::Frequency {
+            return None;
+        }
+        let needs_fourier = matches!(
+            self,
+            Axis::Level | Axis::FMax | Axis::Harmonics | Axis::Sigma
+        );
         let needs_shape = matches!(self, Axis::SqrtKappa | Axis::Kappa | Axis::Duty);
         (needs_fourier || (needs_shape && kind == "harmonics")).then(|| {
             format!(
@@ -162,6 +177,8 @@ impl Axis {
     }
 
     /// Sets this axis's parameter; `level` is applied by [`set_level`].
+    /// `sqrt_kappa`, `kappa`, `frequency` and `f_max` replace the drive
+    /// the base scene gave, whichever it was.
     pub(super) fn apply(self, scene: &mut Scene, value: AxisValue) {
         let motor = &mut scene.motor;
         let number = value.as_f64().unwrap_or(f64::NAN);
@@ -177,6 +194,7 @@ impl Axis {
                     scale_to_stroke, ..
                 },
             ) => *scale_to_stroke = Some(number),
+            (Axis::Frequency, SignalSpec::Harmonics { frequency, .. }) => *frequency = number,
             (Axis::Harmonics, SignalSpec::Fourier { harmonics, .. }) => {
                 if let AxisValue::Integer(n) = value {
                     *harmonics = usize::try_from(n).unwrap_or(0);
@@ -188,8 +206,10 @@ impl Axis {
                 }
             }
             (axis, SignalSpec::Fourier { shape, .. } | SignalSpec::Ideal(shape)) => match axis {
-                Axis::SqrtKappa => shape.kappa = number * number,
-                Axis::Kappa => shape.kappa = number,
+                Axis::SqrtKappa => shape.drive = Drive::Kappa(number * number),
+                Axis::Kappa => shape.drive = Drive::Kappa(number),
+                Axis::Frequency => shape.drive = Drive::Frequency(number),
+                Axis::FMax => shape.drive = Drive::FMax(number),
                 Axis::Stroke => shape.stroke = number,
                 Axis::Duty => shape.duty = number,
                 _ => {}
@@ -206,7 +226,7 @@ pub(super) fn set_level(scene: &mut Scene, level: f64) {
     } = &mut scene.signal
     {
         let sqrt_kappa = level / *harmonics as f64;
-        shape.kappa = sqrt_kappa * sqrt_kappa;
+        shape.drive = Drive::Kappa(sqrt_kappa * sqrt_kappa);
     }
 }
 

@@ -72,6 +72,8 @@ pub struct AxesTable {
     pub level: Option<Vec<f64>>,
     pub sqrt_kappa: Option<Vec<f64>>,
     pub kappa: Option<Vec<f64>>,
+    pub frequency: Option<Vec<f64>>,
+    pub f_max: Option<Vec<f64>>,
     pub harmonics: Option<Vec<i64>>,
     pub sigma: Option<Vec<bool>>,
     pub stroke: Option<Vec<f64>>,
@@ -97,6 +99,8 @@ impl AxesTable {
                     Axis::Level => numbers(&self.level),
                     Axis::SqrtKappa => numbers(&self.sqrt_kappa),
                     Axis::Kappa => numbers(&self.kappa),
+                    Axis::Frequency => numbers(&self.frequency),
+                    Axis::FMax => numbers(&self.f_max),
                     Axis::Harmonics => self
                         .harmonics
                         .as_ref()
@@ -254,13 +258,19 @@ impl Sweep {
         let shape_axes: Vec<_> = axes
             .iter()
             .map(|(a, _)| *a)
-            .filter(|a| matches!(a, Axis::Level | Axis::SqrtKappa | Axis::Kappa))
+            .filter(|a| {
+                matches!(
+                    a,
+                    Axis::Level | Axis::SqrtKappa | Axis::Kappa | Axis::Frequency | Axis::FMax
+                )
+            })
             .collect();
         if shape_axes.len() > 1 {
             return Err(param(ParamError::Inconsistent {
                 field: format!("axes.{}", shape_axes[1]),
                 reason: format!(
-                    "give at most one of axes.level, axes.sqrt_kappa and axes.kappa (also given: axes.{})",
+                    "give at most one of axes.level, axes.sqrt_kappa, axes.kappa, axes.frequency \
+                     and axes.f_max: each fixes the drive (also given: axes.{})",
                     shape_axes[0]
                 ),
             }));

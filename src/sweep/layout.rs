@@ -210,7 +210,7 @@ fn consistent(columns: &[Column], cells: &[Cell]) -> Result<(), String> {
         let own = |c: &Column| {
             matches!(
                 c,
-                Column::Case | Column::Axis(_) | Column::SceneHash | Column::Failure
+                Column::Case | Column::Axis(_) | Column::SceneHash | Column::F0 | Column::Failure
             )
         };
         if let Some((c, _)) = columns

@@ -31,6 +31,8 @@
 //! | `level` | `sqrt(kappa) = level / n` (37), fourier signals | > 0 |
 //! | `sqrt_kappa` | `signal.sqrt_kappa` | > 0 |
 //! | `kappa` | `signal.kappa` | > 0 |
+//! | `frequency` | `signal.frequency`, the drive frequency `f_0` (Hz) | > 0 |
+//! | `f_max` | `signal.f_max = n f_0` (Hz), fourier signals | > 0 |
 //! | `harmonics` | `signal.harmonics`, fourier signals | integers 1..=256 |
 //! | `sigma` | `signal.sigma`, fourier signals | booleans |
 //! | `stroke` | `signal.stroke` (or the `scale_to_stroke` target of kind = "harmonics") | > 0 |
@@ -41,8 +43,12 @@
 //! | `slider_mass` | `motor.slider_mass` | > 0 |
 //! | `extra_acceleration` | `motor.extra_acceleration` | finite |
 //!
-//! At most one of `level`, `sqrt_kappa` and `kappa` may be given; `level`
-//! takes `n` from the `harmonics` axis, or from the base scene without one.
+//! At most one of `level`, `sqrt_kappa`, `kappa`, `frequency` and `f_max`
+//! may be given: each replaces the base scene's drive
+//! ([`crate::signal::Drive`]), which is then held as given (a base given
+//! by `frequency` keeps `f_0` along a `slider_mass` axis, one given by
+//! `kappa` retunes it); `level` takes `n` from the `harmonics` axis, or
+//! from the base scene without one.
 //! Axes that do not fit the base signal (`harmonics` with `kind = "ideal"`)
 //! are errors. The `base` scene's `[outputs] trajectory` and `events` are
 //! ignored: a sweep writes one row per case.
@@ -76,7 +82,8 @@
 //!   in `stickslip run --json`) is followed by `stiction_fraction_steady`
 //!   and `velocity_per_power` by `apparent_power` (VA); empty without a
 //!   steady state;
-//! * `period` (s), `startup_periods`, `periods_simulated`, `events_total`
+//! * `f0` (Hz): the case's drive frequency, from its scene (also in the
+//!   row of a failed case); `period` (s), `startup_periods`, `periods_simulated`, `events_total`
 //!   (events of the start-up), `last_v_p` (m/s, for `run-away` and
 //!   `not_converged`), `wall_time_s`, `setup_time_s` and
 //!   `simulation_time_s` (left out with [`Options::timing`] `= false`, so

@@ -5,6 +5,7 @@
 use super::grid::{Axis, AxisKey, AxisValue, Case, Format, MAX_CASES, Sweep};
 use crate::error::Error;
 use crate::indicator::Indicator;
+use crate::motor::Motor;
 use crate::provenance::{VERSION, scene_hash};
 use crate::simulation::Outcome;
 
@@ -108,6 +109,7 @@ pub(super) fn column_kinds(sweep: &Sweep, timing: bool) -> Vec<Column> {
         }
     }
     columns.extend([
+        Column::F0,
         Column::Period,
         Column::StartupPeriods,
         Column::PeriodsSimulated,
@@ -193,6 +195,7 @@ pub(super) enum Column {
     Indicator(Indicator),
     StictionSteady,
     ApparentPower,
+    F0,
     Period,
     StartupPeriods,
     PeriodsSimulated,
@@ -215,6 +218,7 @@ impl Column {
             Column::Indicator(i) => i.name(),
             Column::StictionSteady => "stiction_fraction_steady",
             Column::ApparentPower => "apparent_power",
+            Column::F0 => "f0",
             Column::Period => "period",
             Column::StartupPeriods => "startup_periods",
             Column::PeriodsSimulated => "periods_simulated",
@@ -230,7 +234,8 @@ impl Column {
     }
 
     pub(super) fn from_name(name: &str) -> Option<Column> {
-        const FIXED: [Column; 14] = [
+        const FIXED: [Column; 15] = [
+            Column::F0,
             Column::Case,
             Column::Regime,
             Column::LastVp,
@@ -266,6 +271,7 @@ impl Column {
             Column::Indicator(i) => 30 + 2 * indicator(i),
             Column::StictionSteady => 31 + 2 * indicator(Indicator::StictionFraction),
             Column::ApparentPower => 31 + 2 * indicator(Indicator::VelocityPerPower),
+            Column::F0 => 49,
             Column::Period => 50,
             Column::StartupPeriods => 51,
             Column::PeriodsSimulated => 52,
@@ -288,6 +294,11 @@ impl Column {
             Column::Case => return Cell::Unsigned(case.index as u64),
             Column::Axis(a) => return case.value(a).map_or(Cell::Empty, Cell::axis),
             Column::SceneHash => return Cell::Text(scene_hash(&case.scene)),
+            // The drive frequency is the case's own, run or not.
+            Column::F0 => {
+                let f0 = Motor::new(case.scene.motor).map(|m| case.scene.signal.f0(&m));
+                return Cell::number(f0.ok());
+            }
             Column::Failure => {
                 return match result {
                     Ok(_) => Cell::Empty,
@@ -326,7 +337,7 @@ impl Column {
             Column::SetupTime => Cell::number(Some(setup.as_secs_f64())),
             Column::SimulationTime => Cell::number(Some(simulation.as_secs_f64())),
             Column::ErrorVInf => Cell::number(report.and_then(|r| r.error.v_inf)),
-            Column::Case | Column::Axis(_) | Column::SceneHash | Column::Failure => {
+            Column::Case | Column::Axis(_) | Column::SceneHash | Column::F0 | Column::Failure => {
                 unreachable!("handled above")
             }
         }
@@ -381,6 +392,7 @@ impl Column {
                 Column::Indicator(_)
                 | Column::StictionSteady
                 | Column::ApparentPower
+                | Column::F0
                 | Column::Period
                 | Column::LastVp
                 | Column::WallTime
@@ -393,6 +405,7 @@ impl Column {
                 Column::Indicator(_)
                 | Column::StictionSteady
                 | Column::ApparentPower
+                | Column::F0
                 | Column::Period
                 | Column::LastVp
                 | Column::WallTime

@@ -598,7 +598,9 @@ impl Family {
         let mut scene = self.base.clone();
         match (knob, &mut scene.signal) {
             (Knob::Load, _) => scene.motor.extra_acceleration = x,
-            (Knob::Kappa, SignalSpec::Fourier { shape, .. }) => shape.kappa = x,
+            (Knob::Kappa, SignalSpec::Fourier { shape, .. }) => {
+                shape.drive = stickslip::Drive::Kappa(x)
+            }
             (Knob::Amplitude(k), SignalSpec::Harmonics { amplitudes, .. }) => {
                 amplitudes[k - 1] *= x;
             }
