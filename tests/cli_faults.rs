@@ -259,7 +259,7 @@ fn plausibility_warnings_on_stderr_and_the_run_goes_on() {
         "[signal]\nkind = \"fourier\"\nharmonics = 2\nsigma = true\nsqrt_kappa = 6\nstroke = 25\n",
     );
     let warning = "stickslip: warning: signal.stroke = 25 m is above 1 mm; strokes are in \
-                   metres (25 um = 25e-6)\n";
+                   metres (25 um = 2.5e-5 m)\n";
     for command in ["run", "check"] {
         let o = stickslip()
             .arg(command)

@@ -47,7 +47,7 @@ fn plausibility_warnings_stroke_meant_as_micrometres() {
     let warnings: Vec<String> = scene.warnings().iter().map(|w| w.to_string()).collect();
     assert_eq!(
         warnings,
-        ["signal.stroke = 25 m is above 1 mm; strokes are in metres (25 um = 25e-6)"]
+        ["signal.stroke = 25 m is above 1 mm; strokes are in metres (25 um = 2.5e-5 m)"]
     );
     // The run goes on: a warning is not an error.
     assert!(scene.validate().is_ok());

@@ -303,9 +303,9 @@ fn bad_input_is_one_line_naming_the_field() {
 #[test]
 fn no_output_overwrites_the_input() {
     let dir = scratch("overwrite");
-    // A scene file may have any name; this one is called in.csv, so that
-    // the CSV beside a figure `in.svg` would be the input itself.
-    let scene = dir.join("in.csv");
+    // A scene file may have any name; this one is called in.svg.csv, so
+    // that the CSV beside a figure `in.svg` would be the input itself.
+    let scene = dir.join("in.svg.csv");
     let text = "[optimize]\nsamples = 4\n";
     std::fs::write(&scene, text).unwrap();
     let other = dir.join("best.toml");
