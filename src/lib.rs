@@ -89,7 +89,10 @@ mod simulation;
 pub mod sweep;
 
 pub use check::{CheckReport, check};
-pub use compare::{CompareError, CompareOptions, Report as CompareReport, compare};
+pub use compare::{
+    Column as CompareColumn, CompareError, CompareOptions, Report as CompareReport,
+    UserData as CompareData, compare, compare_data,
+};
 pub use engine::event::{EventEngine, EventOptions};
 pub use engine::fixed_step::{FixedStepEngine, FixedStepOptions};
 pub use engine::{

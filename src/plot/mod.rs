@@ -28,7 +28,9 @@
 //! * [`scaling`]: figure 9 and the stroke scaling law;
 //! * [`timeline`]: the slider's modes over the start-up;
 //! * [`characteristic`]: `v_inf` against the load, with the stall force
-//!   and the output power.
+//!   and the output power;
+//! * [`compare`]: a user's fixed-step results against the exact solution
+//!   (`stickslip compare`).
 //! * [`optimize`]: an optimal signal against the sigma signal, and the
 //!   `n = 2` design plane as a heat map.
 //!
@@ -47,6 +49,7 @@
 mod axes;
 mod canvas;
 pub mod characteristic;
+pub mod compare;
 mod data;
 pub(crate) mod export;
 mod font;
@@ -115,10 +118,16 @@ impl Figure {
     pub fn write(&self, path: &Path, style: &Style, dpi: f64) -> Result<[PathBuf; 2], PlotError> {
         let format = Format::of(path)?;
         let bytes = self.encode(format, style, dpi)?;
-        let csv = path.with_extension("csv");
+        let csv = Figure::data_path(path);
         write_atomically(path, &bytes)?;
         write_atomically(&csv, self.csv.as_bytes())?;
         Ok([path.to_owned(), csv])
+    }
+
+    /// The path [`Figure::write`] gives the data of a figure written to
+    /// `path`, so that callers can check it before anything is written.
+    pub fn data_path(path: &Path) -> PathBuf {
+        path.with_extension("csv")
     }
 
     /// Writes `NAME.svg` and `NAME.csv` into `dir` (created if missing) in
