@@ -64,10 +64,7 @@ fn series(data: &UserData, ex: &Exact<'_>) -> (Vec<u64>, Vec<f64>, Option<Period
             let (Some(t), Some(x)) = (&data.t, &data.x_s) else {
                 return (Vec::new(), Vec::new(), None);
             };
-            let (lo, hi) = ex.signal.acceleration_bound();
-            let slip = ex.motor.a_d() + ex.motor.g_t().abs();
-            let bound = lo.abs().max(hi.abs()).max(slip);
-            match periods::from_samples(&t.values, &x.values, ex.signal.period(), bound) {
+            match periods::from_samples(&t.values, &x.values, ex.signal.period()) {
                 Some(s) => (s.periods, s.v_p, Some(s.ends)),
                 None => (Vec::new(), Vec::new(), None),
             }

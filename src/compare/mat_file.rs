@@ -25,6 +25,8 @@
 use super::CompareError;
 use super::read::RawColumn;
 use matrw::{MatVariable, MatlabType};
+use std::cell::Cell;
+use std::sync::Once;
 
 /// Length of the header of a MAT-file: 116 bytes of descriptive text, 8
 /// of subsystem offset, 2 of version and 2 of endian indicator.
@@ -38,7 +40,8 @@ const LEVEL_5_TEXT: &[u8] = b"MATLAB 5.0 MAT-file, ";
 /// The header is checked here: a version-5 file (`0x0100`) with the
 /// endian indicator `IM` or `MI`. Its descriptive text is only text
 /// (MATLAB writes `MATLAB 5.0 MAT-file, Platform: ...`, scipy omits the
-/// comma), so it is replaced by the one `matrw` expects before parsing.
+/// comma), so it is replaced by the one `matrw` expects before parsing,
+/// and compressed variables are inflated here ([`inflated`]).
 pub(crate) fn columns(bytes: &[u8], file: &str) -> Result<Vec<RawColumn>, CompareError> {
     let bad = |reason: String| CompareError::data(file, None, None, reason);
     if bytes.len() < HEADER || !bytes.starts_with(b"MATLAB") {
@@ -62,17 +65,107 @@ pub(crate) fn columns(bytes: &[u8], file: &str) -> Result<Vec<RawColumn>, Compar
              file (MATLAB: save -v7)"
         )));
     }
-    let mut bytes = bytes.to_vec();
-    bytes[..116].fill(b' ');
-    bytes[..LEVEL_5_TEXT.len()].copy_from_slice(LEVEL_5_TEXT);
-    let mat = matrw::load_matfile_from_u8(&bytes).map_err(|e| {
-        let e = e.to_string();
-        let first = e.lines().next().unwrap_or("").trim();
-        bad(format!("not a readable MATLAB Level 5 MAT-file ({first})"))
-    })?;
+    let bytes = inflated(bytes, endian == b"IM").map_err(bad)?;
+    let mat = parse(&bytes).map_err(|e| bad(format!("a damaged MAT-file ({e})")))?;
     let mut out = Vec::new();
     for (name, var) in mat.iter() {
         flatten(name, var, &mut out);
+    }
+    Ok(out)
+}
+
+thread_local! {
+    /// True while this thread parses with `matrw`: its panics are reported
+    /// as errors, not printed.
+    static PARSING: Cell<bool> = const { Cell::new(false) };
+}
+
+/// `matrw`'s parse of an inflated file. `matrw` panics on some damaged
+/// files (a field name that is not UTF-8, an array whose size disagrees
+/// with its dimensions); such a panic is caught and becomes the error,
+/// and the panic hook stays silent for it (for this thread, during the
+/// parse only; other panics are printed as before).
+fn parse(bytes: &[u8]) -> Result<matrw::MatFile, String> {
+    static HOOK: Once = Once::new();
+    HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !PARSING.with(Cell::get) {
+                previous(info);
+            }
+        }));
+    });
+    PARSING.with(|p| p.set(true));
+    let result = std::panic::catch_unwind(|| matrw::load_matfile_from_u8(bytes));
+    PARSING.with(|p| p.set(false));
+    let first_line = |text: &str| text.lines().next().unwrap_or("").trim().to_owned();
+    match result {
+        Ok(Ok(mat)) => Ok(mat),
+        Ok(Err(e)) => Err(first_line(&e.to_string())),
+        Err(payload) => Err(payload
+            .downcast_ref::<String>()
+            .map(|s| first_line(s))
+            .or_else(|| payload.downcast_ref::<&str>().map(|s| first_line(s)))
+            .unwrap_or_else(|| "the reader failed".to_owned())),
+    }
+}
+
+/// Data type of a compressed data element.
+const MI_COMPRESSED: u32 = 15;
+/// Data type of an array.
+const MI_MATRIX: u32 = 14;
+
+/// The file with the descriptive text `matrw` expects and every
+/// compressed top-level element (zlib, type 15) replaced by the element it
+/// holds, so that a damaged stream is reported here. Each top-level
+/// element is a tag (type and size, 4 bytes each) and its data.
+fn inflated(bytes: &[u8], little: bool) -> Result<Vec<u8>, String> {
+    use std::io::Read as _;
+    let word = |at: usize| -> u32 {
+        let b = [bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]];
+        if little {
+            u32::from_le_bytes(b)
+        } else {
+            u32::from_be_bytes(b)
+        }
+    };
+    let mut out = Vec::with_capacity(bytes.len());
+    out.extend_from_slice(&bytes[..HEADER]);
+    out[..116].fill(b' ');
+    out[..LEVEL_5_TEXT.len()].copy_from_slice(LEVEL_5_TEXT);
+    let mut at = HEADER;
+    let mut index = 0;
+    while at + 8 <= bytes.len() {
+        index += 1;
+        let (kind, size) = (word(at), word(at + 4) as usize);
+        let end = at
+            .checked_add(8 + size)
+            .filter(|&e| e <= bytes.len())
+            .ok_or_else(|| {
+                format!(
+                    "a damaged MAT-file: variable {index} claims {size} bytes, {} are left",
+                    bytes.len() - at - 8
+                )
+            })?;
+        match kind {
+            MI_COMPRESSED => {
+                let mut inner = Vec::new();
+                flate2::read::ZlibDecoder::new(&bytes[at + 8..end])
+                    .read_to_end(&mut inner)
+                    .map_err(|e| {
+                        format!("a damaged MAT-file: variable {index} does not decompress ({e})")
+                    })?;
+                out.extend_from_slice(&inner);
+            }
+            MI_MATRIX => out.extend_from_slice(&bytes[at..end]),
+            other => {
+                return Err(format!(
+                    "a damaged MAT-file: variable {index} has the data type {other}, not an \
+                     array (14) or compressed data (15)"
+                ));
+            }
+        }
+        at = end;
     }
     Ok(out)
 }
@@ -258,5 +351,39 @@ fn simulink(name: &str, signals: Option<&MatVariable>, out: &mut Vec<RawColumn>)
         if elements.len() == 1 {
             alias(out, &path, name);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_damaged_file_is_an_error_never_a_panic() {
+        // The fixture inflated, then one byte at a time set to each of a
+        // few values past the header: every outcome is columns or an error.
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/data/compare/simulink_array.mat"
+        );
+        let bytes = std::fs::read(path).expect("the fixture is committed");
+        let plain = inflated(&bytes, true).expect("the fixture inflates");
+        assert!(columns(&plain, "plain.mat").is_ok());
+        let (mut errors, mut read) = (0, 0);
+        for at in (HEADER..plain.len().min(HEADER + 600)).step_by(7) {
+            for value in [0u8, 0x7f, 0xd7, 0xff] {
+                let mut damaged = plain.clone();
+                damaged[at] = value;
+                match columns(&damaged, "damaged.mat") {
+                    Ok(_) => read += 1,
+                    Err(e) => {
+                        assert_eq!(e.to_string().lines().count(), 1, "{e}");
+                        errors += 1;
+                    }
+                }
+            }
+        }
+        // Damage in the tags, dimensions and names is found.
+        assert!(errors > 0 && read > 0, "{errors} errors, {read} read");
     }
 }

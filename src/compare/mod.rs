@@ -386,13 +386,20 @@ pub fn compare_data(
     }
     let metric = options.metric;
     if reports.iter().all(|r| r.pass.is_none()) {
+        let found: Vec<String> = data
+            .iter()
+            .map(|(name, d)| format!("{name} has {}", d.found()))
+            .collect();
         return Err(CompareError::Option {
             option: "--metric".into(),
             value: metric.name().into(),
-            reason: "no file has data for it (v_inf and v_p need p and v_p or the samples x_S \
-                     over a whole period, startup_periods a start-up reaching 99 %, x_S and v_S \
-                     samples, event times v_S samples with events)"
-                .into(),
+            reason: format!(
+                "no file has data for it (v_inf and v_p need p and v_p or the samples x_S over \
+                 a whole period, startup_periods a start-up reaching 99 %, x_S and v_S \
+                 samples, event times v_S samples with events); {}; name columns with \
+                 --var-t, --var-x-s, --var-v-s, --var-x-r, --var-p, --var-v-p",
+                found.join("; ")
+            ),
         });
     }
     let with_step: Vec<&FileReport> = reports.iter().filter(|r| r.step.is_some()).collect();

@@ -91,7 +91,7 @@ impl Report {
                 let _ = writeln!(
                     s,
                     "  v_p from x_S at {} period ends, {} interpolated between samples \
-                     (v_p interpolation error <= {:.3e} m/s)",
+                     (estimated v_p interpolation error {:.1e} m/s)",
                     e.ends, e.interpolated, e.max_v_p_error
                 );
             }

@@ -4,17 +4,19 @@
 //!
 //! An end `kT` that is a sample time takes that sample. One that the grid
 //! misses is interpolated linearly between the samples `t_a < kT < t_b`
-//! around it; for a motion whose acceleration is bounded by `A`, the error
-//! of the linear interpolant is at most
+//! around it. The error of the linear interpolant of a smooth `x` is
 //!
 //! ```text
-//! e_k = (kT - t_a) (t_b - kT) / 2 * A,
+//! e_k = (kT - t_a) (t_b - kT) / 2 * |x''|
 //! ```
 //!
-//! which is 0 on a sample and `(t_b - t_a)^2 A / 8` at most. The slider's
-//! acceleration is the rod's in stick and `+-a_d + g_t` in slip, so
-//! `A = max(max abs(a_R), a_d + abs(g_t))`. The bound of `v_p` is
-//! `(e_(p-1) + e_p) / T`.
+//! to leading order, with `x''` between `t_a` and `t_b`; it is estimated
+//! with the largest of the second divided differences of the samples
+//! `(t_(a-1), t_a, t_b)` and `(t_a, t_b, t_(b+1))`. The estimate of `v_p`
+//! is `(e_(p-1) + e_p) / T`. It is an estimate, not a bound: an event
+//! between `t_a` and `t_b` (a jump of the slider's acceleration) makes
+//! `x''` there differ from its neighbours'; samples a step apart see it.
+//! An end within `1e-6` of the spacing from a sample counts as on it.
 //!
 //! Contract: a period is in the series only if the samples cover both its
 //! ends (nothing is extrapolated); the times are sorted and increasing
@@ -40,24 +42,33 @@ pub struct PeriodEnds {
     pub ends: usize,
     /// Of those, ends between samples (interpolated).
     pub interpolated: usize,
-    /// Largest bound of the interpolation error of an end position (m).
+    /// Largest estimated interpolation error of an end position (m).
     pub max_position_error: f64,
-    /// Largest bound of the interpolation error of a `v_p` (m/s).
+    /// Largest estimated interpolation error of a `v_p` (m/s).
     pub max_v_p_error: f64,
 }
 
-/// The per-period series of the samples `(t, x)` for period `period`;
-/// `acceleration` is the bound `A` of the module doc. `None` when the
-/// samples cover no whole period.
-pub(crate) fn from_samples(
-    t: &[f64],
-    x: &[f64],
-    period: f64,
-    acceleration: f64,
-) -> Option<SampledPeriods> {
-    let (&t0, &t1) = (t.first()?, t.last()?);
-    let first = (t0 / period).ceil().max(0.0) as u64;
-    let last = (t1 / period).floor() as u64;
+/// The second divided difference of `x` over the samples `i, i+1, i+2`.
+fn curvature(t: &[f64], x: &[f64], i: usize) -> f64 {
+    if i + 2 >= t.len() {
+        return 0.0;
+    }
+    let d1 = (x[i + 1] - x[i]) / (t[i + 1] - t[i]);
+    let d2 = (x[i + 2] - x[i + 1]) / (t[i + 2] - t[i + 1]);
+    2.0 * (d2 - d1) / (t[i + 2] - t[i])
+}
+
+/// The per-period series of the samples `(t, x)` for period `period`.
+/// `None` when the samples cover no whole period.
+pub(crate) fn from_samples(t: &[f64], x: &[f64], period: f64) -> Option<SampledPeriods> {
+    if t.len() < 2 {
+        return None;
+    }
+    let (t0, t1) = (t[0], t[t.len() - 1]);
+    // An end this close to the first or last sample is on it.
+    let (near0, near1) = (1e-6 * (t[1] - t0), 1e-6 * (t1 - t[t.len() - 2]));
+    let first = ((t0 - near0) / period).ceil().max(0.0) as u64;
+    let last = ((t1 + near1) / period).floor() as u64;
     if last <= first {
         return None;
     }
@@ -70,21 +81,22 @@ pub(crate) fn from_samples(
     };
     for k in first..=last {
         let end = k as f64 * period;
-        let j = t.partition_point(|&s| s < end);
-        let (x_end, error) = if j < t.len() && t[j] == end {
+        let j = t.partition_point(|&s| s < end).clamp(1, t.len() - 1);
+        let (ta, tb) = (t[j - 1], t[j]);
+        let on = 1e-6 * (tb - ta);
+        let (x_end, error) = if (end - ta).abs() <= on {
+            (x[j - 1], 0.0)
+        } else if (tb - end).abs() <= on {
             (x[j], 0.0)
-        } else if j == 0 || j >= t.len() {
-            // Outside the samples by rounding of kT: the nearest sample.
-            let i = j.min(t.len() - 1);
-            ends.interpolated += 1;
-            (x[i], 0.0)
         } else {
-            let (ta, tb) = (t[j - 1], t[j]);
             let w = (end - ta) / (tb - ta);
+            let a = curvature(t, x, j.saturating_sub(2))
+                .abs()
+                .max(curvature(t, x, j - 1).abs());
             ends.interpolated += 1;
             (
                 x[j - 1] + w * (x[j] - x[j - 1]),
-                0.5 * (end - ta) * (tb - end) * acceleration,
+                0.5 * (end - ta) * (tb - end) * a,
             )
         };
         ends.ends += 1;
@@ -110,16 +122,17 @@ mod tests {
         // x = 2 t: linear interpolation is exact, v_p = 2 whatever the grid.
         let t: Vec<f64> = (0..=70).map(|i| i as f64 * 0.3).collect();
         let x: Vec<f64> = t.iter().map(|t| 2.0 * t).collect();
-        let s = from_samples(&t, &x, 1.0, 0.0).unwrap();
+        let s = from_samples(&t, &x, 1.0).unwrap();
         assert_eq!(s.periods, (1..=21).collect::<Vec<u64>>());
         for v in &s.v_p {
             approx::assert_relative_eq!(*v, 2.0, max_relative = 1e-12);
         }
-        // x = t^2 / 2 (A = 1): the end k = 1 lies between 0.9 and 1.2; the
-        // chord there is above the parabola by (0.1)(0.2)/2 = 0.01, the
-        // bound itself (a parabola attains it), and x(0) is a sample.
+        // x = t^2 / 2 (x'' = 1): the end k = 1 lies between 0.9 and 1.2;
+        // the chord there is above the parabola by (0.1)(0.2)/2 = 0.01,
+        // which the estimate finds exactly (the second differences of a
+        // parabola are its x''), and x(0) is a sample.
         let x: Vec<f64> = t.iter().map(|t| 0.5 * t * t).collect();
-        let s = from_samples(&t, &x, 1.0, 1.0).unwrap();
+        let s = from_samples(&t, &x, 1.0).unwrap();
         approx::assert_relative_eq!(s.v_p[0] - 0.5, 0.01, max_relative = 1e-9);
         approx::assert_relative_eq!(s.ends.max_position_error, 0.01, max_relative = 1e-9);
     }

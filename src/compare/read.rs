@@ -209,6 +209,35 @@ impl UserData {
         validate(self, file, &Origin::Mat, &[], &[])
     }
 
+    /// What the data hold, for messages: `t (N values), x_S (N values)...`
+    /// under the names they were found by.
+    pub(crate) fn found(&self) -> String {
+        let all = [
+            ("t", &self.t),
+            ("x_S", &self.x_s),
+            ("v_S", &self.v_s),
+            ("x_R", &self.x_r),
+            ("p", &self.p),
+            ("v_p", &self.v_p),
+        ];
+        let held: Vec<String> = all
+            .iter()
+            .filter_map(|(q, c)| {
+                let c = c.as_ref()?;
+                Some(if c.name == *q {
+                    format!("{q} ({} values)", c.values.len())
+                } else {
+                    format!("{q} = {} ({} values)", c.name, c.values.len())
+                })
+            })
+            .collect();
+        if held.is_empty() {
+            "nothing".to_owned()
+        } else {
+            held.join(", ")
+        }
+    }
+
     /// The fixed step of the time column: the median sample spacing (s).
     pub(crate) fn step(&self) -> Option<f64> {
         let t = &self.t.as_ref()?.values;
