@@ -1,14 +1,17 @@
 //! The figure of `stickslip compare` ([`crate::compare`]).
 //!
 //! Panel (a): the slider velocity `v_S` of the first file with samples
-//! against the exact one over chosen periods. Panel (b): the per-period
+//! (at most 40 of its samples, as markers) on the exact one over chosen
+//! periods. Panel (b): the per-period
 //! error `v_p,user - v_p` against the period `p`, for at most
 //! [`MAX_SERIES`] files (with more, the files of the smallest and the
 //! largest step and evenly spaced ones between; the note names them).
 //! Panel (c), with two or more files with a step: the step-size part of
 //! the `v_inf` error (relative, `abs(v_p,user(P) - v_p(P)) / abs(v_inf)`)
 //! against the step `h` on logarithmic axes, with the fitted order line
-//! when the fit is supported. The CSV beside the figure holds every drawn
+//! when the fit is supported. The notes give the exact `v_inf` and, for
+//! a file that ends before the start-up is over, the split of its `v_inf`
+//! error. The CSV beside the figure holds every drawn
 //! point: `panel, series, x, y` in SI units (s, m/s, periods, 1).
 
 use super::style::{Dash, Marker};
@@ -17,6 +20,9 @@ use crate::compare::{FileReport, Metric, Report};
 
 /// Most files drawn in panel (b).
 pub const MAX_SERIES: usize = 4;
+
+/// Most of the user's samples marked in panel (a).
+const USER_MARKERS: usize = 40;
 
 /// The short name of a file (its name without directories).
 fn short(file: &str) -> String {
@@ -88,7 +94,8 @@ pub fn figure(
         let pts: Vec<&(f64, f64, f64)> = f
             .velocity
             .iter()
-            .filter(|s| s.0 >= t0 && s.0 <= t1)
+            // A sample at an end, as written to a few digits, is in.
+            .filter(|s| s.0 >= t0 - 1e-9 * period && s.0 <= t1 + 1e-9 * period)
             .collect();
         if pts.is_empty() {
             return Err(PlotError::Data {
@@ -112,7 +119,10 @@ pub fn figure(
             Axis::linear("v_S (m/s)", y),
         );
         let exact: Vec<(f64, f64)> = pts.iter().map(|s| (s.0, s.2)).collect();
-        let user: Vec<(f64, f64)> = pts.iter().map(|s| (s.0, s.1)).collect();
+        // The user's samples as markers on the exact curve, at most
+        // USER_MARKERS of them (evenly picked) so that both stay visible.
+        let every = pts.len().div_ceil(USER_MARKERS).max(1);
+        let user: Vec<(f64, f64)> = pts.iter().step_by(every).map(|s| (s.0, s.1)).collect();
         for (series, points) in [("exact", &exact), ("user", &user)] {
             for (t, v) in points.iter() {
                 csv.row(&[Cell::S("a"), Cell::S(series), Cell::F(*t), Cell::F(*v)]);
@@ -123,10 +133,10 @@ pub fn figure(
             exact,
             Look::nth(0).weighted(1.4),
         ));
-        panel.series.push(Series::line(
-            Some(&format!("{} v_S", short(&f.file))),
+        panel.series.push(Series::points(
+            Some(&format!("{} v_S (samples)", short(&f.file))),
             user,
-            Look::nth(1),
+            Look::nth_points(1),
         ));
         panels.push(panel);
     }
@@ -205,7 +215,7 @@ pub fn figure(
             ]);
         }
         panel.series.push(Series::points(
-            Some("one file"),
+            Some("step-size part, one file"),
             steps.iter().map(|s| (s.0, s.1)).collect(),
             Look::nth_points(0).with_marker(Marker::Circle),
         ));
@@ -248,6 +258,29 @@ pub fn figure(
         "Exact v∞ = {:.6} m/s, period T = {:.4e} s.",
         report.v_inf, period
     ));
+    // Where the file ends before the start-up: the split of its error.
+    let unfinished: Vec<String> = report
+        .files
+        .iter()
+        .filter_map(|f| {
+            let s = f.v_inf_split.as_ref().filter(|s| s.truncation_dominates)?;
+            Some(format!(
+                "{} ends at period {}: its v∞ error is the step-size part {:.2e} m/s plus the \
+                 truncation part {:.2e} m/s (the start-up is not over).",
+                short(&f.file),
+                s.period,
+                s.step_size,
+                s.truncation
+            ))
+        })
+        .collect();
+    let more = unfinished.len().saturating_sub(2);
+    notes.extend(unfinished.into_iter().take(2));
+    if more > 0 {
+        notes.push(format!(
+            "{more} more files end before the start-up is over."
+        ));
+    }
     Ok(Figure {
         name: name.to_owned(),
         plot: Plot::grid(panels, 1, 0.55).with_notes(notes),
