@@ -1,9 +1,15 @@
-//! Cross-validation of a user's fixed-step results (`stickslip compare`):
-//! the user's files are read ([`read`]), the exact solution is evaluated at
-//! the user's own times ([`exact`]), the rod motion is checked ([`rod`]),
-//! events are detected and matched ([`events`]), errors are measured per
-//! file and, over several files of one scene at different steps, their
-//! convergence order is fitted ([`convergence`]).
+//! Cross-validation of a user's fixed-step results (`stickslip compare`),
+//! in two halves kept apart: the readers turn files into arrays
+//! ([`read`]: names and units; CSV in `csv_file`, MAT-files in
+//! `mat_file`), and the analysis takes arrays ([`compare_data`], for any
+//! caller with arrays): the exact solution is evaluated at the user's own
+//! times ([`exact`]), the per-period series is formed from `x_S` when the
+//! file has none ([`periods`]), the rod motion is checked ([`rod`]),
+//! events are located and matched ([`events`]), errors are measured per
+//! file (`analysis`) and, over several files of one scene at different
+//! steps, their convergence order is fitted ([`convergence`]).
+//! docs/model.md section 12 states the equations of the period ends, the
+//! event times and the split of the `v_inf` error.
 //!
 //! The errors, one table ([`Metric`]) that text, JSON, the verdict and the
 //! fits loop over. Each has an absolute value and a value relative to a
@@ -17,6 +23,11 @@
 //! | `x_S_max`, `x_S_rms` | max and RMS of `x_S,user - x_S` at the user's times | the stroke |
 //! | `v_S_max`, `v_S_rms` | max and RMS of `v_S,user - v_S` | `max abs(v_R)` |
 //! | `event_time_max`, `event_time_rms` | max and RMS time error of the matched events | `T` |
+//!
+//! The `v_inf` error of a file ending at period `P` splits into the
+//! step-size part `v_p,user(P) - v_p(P)` and the truncation part
+//! `v_p(P) - v_inf` ([`VInfSplit`]); the verdict and the order fit of
+//! `v_inf` take the step-size part ([`FileReport::judged`]).
 
 mod analysis;
 pub(crate) mod convergence;

@@ -1,12 +1,14 @@
-//! Reading a user's result: CSV files (columns by name in a header row)
-//! and MATLAB Level 5 MAT-files (variables by name, compressed or not).
+//! Reading a user's result into arrays ([`UserData`]): CSV files (columns
+//! by name in a header row, `csv_file`) and MATLAB Level 5 MAT-files
+//! (variables, struct fields and Simulink's layouts flattened into named
+//! columns, `mat_file`).
 //!
 //! The quantities and the names they are found under (case-insensitive,
 //! the first name present wins; `--var-*` options replace the list):
 //!
 //! | quantity | names | unit |
 //! | --- | --- | --- |
-//! | time | `t`, `time` | s (or `--time-unit`) |
+//! | time | `t`, `time`, `tout`, else the `time` of the Simulink struct of a found signal | s (or `--time-unit`) |
 //! | slider position | `x_S`, `x` | m (or `--length-unit`) |
 //! | slider velocity | `v_S`, `v` | length unit / time unit |
 //! | rod position | `x_R` | length unit |
