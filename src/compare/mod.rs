@@ -338,7 +338,7 @@ pub struct Report {
 }
 
 /// Compares the user's files with the exact solution of `scene`: each
-/// file is read ([`read`]), then the arrays are compared
+/// file is read (CSV or MAT, by extension), then the arrays are compared
 /// ([`compare_data`]).
 pub fn compare(
     scene: &Scene,
