@@ -52,7 +52,8 @@
 //! 7. `scene`: the validated description of a run ([`Scene`]);
 //! 8. `simulation`: runs a scene ([`simulate`]) with a time budget;
 //! 9. `report` (text and JSON), `check` (the fixed-step cross-check),
-//!    `export`, `compare` (a user's own results against the exact ones),
+//!    `export`, `compare` (a user's own results against the exact ones:
+//!    [`compare`] reads files, [`compare_data`] takes arrays),
 //!    [`sweep`], [`characteristic`] (velocity against load, stall force),
 //!    [`optimize`] (the best drive signal),
 //!    [`plot`] (`plot/<figure family>.rs`);
