@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 use stickslip::cli::{Streams, main_with};
-use stickslip::plot::{Figure, Preset};
+use stickslip::plot::Preset;
 use stickslip::{CompareOptions, Scene};
 
 const SCENE: &str = "examples/scenes/paper_default.toml";
@@ -79,7 +79,7 @@ fn a_figure_whose_data_would_overwrite_an_input_is_refused() {
     // The input lies where the figure's data would be written.
     let dir = scratch("refuse");
     let figure = dir.join("run.svg");
-    let data = Figure::data_path(&figure);
+    let data = stickslip::plot::data_path(&figure);
     let original = std::fs::read("tests/data/compare/fixed_500.csv").unwrap();
     std::fs::write(&data, &original).unwrap();
     let (code, out, err) = cli(&[

@@ -6,7 +6,7 @@
 use super::{Streams, refuse_outputs};
 use crate::compare::read::{LengthUnit, ReadOptions, TimeUnit};
 use crate::compare::{self, CompareOptions, Metric};
-use crate::plot::{Figure, Format, Preset};
+use crate::plot::{Format, Preset};
 use clap::Args;
 use std::path::{Path, PathBuf};
 
@@ -126,7 +126,7 @@ fn check_figure(args: &CompareArgs) -> Result<(), String> {
             dir.display()
         ));
     }
-    let data = Figure::data_path(figure);
+    let data = crate::plot::data_path(figure);
     let mut inputs: Vec<&Path> = vec![args.scene.as_path()];
     inputs.extend(args.data.iter().map(PathBuf::as_path));
     refuse_outputs(&[figure.as_path(), data.as_path()], &inputs)

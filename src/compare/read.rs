@@ -350,14 +350,10 @@ pub(crate) fn read(path: &Path, options: &ReadOptions) -> Result<UserData, Compa
         ));
     }
     if data.t.is_none() {
-        data.t = own_time(&data, &columns, factor_of_time(options), &file)?;
+        data.t = own_time(&data, &columns, options.time_unit.factor(), &file)?;
     }
     validate(&data, &file, &origin, &lines, &columns)?;
     Ok(data)
-}
-
-fn factor_of_time(options: &ReadOptions) -> f64 {
-    options.time_unit.factor()
 }
 
 /// The time of a Simulink struct whose signals were found: `s.time` for
@@ -402,7 +398,7 @@ fn own_time(
 }
 
 /// Reads only sample times (s): a CSV or MAT-file with a time column or
-/// variable (`t`, `time`), or a text file with one time per line.
+/// variable (`t`, `time`, `tout`), or a text file with one time per line.
 pub(crate) fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>, CompareError> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path);

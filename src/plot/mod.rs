@@ -113,21 +113,15 @@ impl Figure {
     }
 
     /// Writes the figure to `path` (format from the extension) and its CSV
-    /// beside it (`path` with extension `.csv`), each atomically. The
+    /// beside it ([`data_path`]), each atomically. The
     /// directory must exist. Returns the two paths.
     pub fn write(&self, path: &Path, style: &Style, dpi: f64) -> Result<[PathBuf; 2], PlotError> {
         let format = Format::of(path)?;
         let bytes = self.encode(format, style, dpi)?;
-        let csv = Figure::data_path(path);
+        let csv = data_path(path);
         write_atomically(path, &bytes)?;
         write_atomically(&csv, self.csv.as_bytes())?;
         Ok([path.to_owned(), csv])
-    }
-
-    /// The path [`Figure::write`] gives the data of a figure written to
-    /// `path`, so that callers can check it before anything is written.
-    pub fn data_path(path: &Path) -> PathBuf {
-        path.with_extension("csv")
     }
 
     /// Writes `NAME.svg` and `NAME.csv` into `dir` (created if missing) in
@@ -143,6 +137,13 @@ impl Figure {
             300.0,
         )
     }
+}
+
+/// The data file of the figure at `figure` (what [`Figure::write`]
+/// writes beside it), so that callers can check it before anything is
+/// written: `figure` with the extension `.csv`.
+pub fn data_path(figure: &Path) -> PathBuf {
+    figure.with_extension("csv")
 }
 
 fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), PlotError> {
