@@ -3,8 +3,8 @@
 //! says how each file is laid out): the trajectories alone of the S = 500
 //! run stopped after 300 periods, before its start-up ends (CSV, and the
 //! same samples as Simulink's "Structure with time" in a MAT-file written
-//! by scipy's savemat), and its first period as Simulink's "Array" and as
-//! a matrix with named columns.
+//! by scipy's savemat), and its first period as Simulink's "Array", as a
+//! matrix with named columns and as a Scope's "Structure with time".
 //!
 //! The expected numbers come from elsewhere: the user's `v_p` of period
 //! 300 is the generator's own (fixed_500.csv, the same run, whose `v_p`
@@ -154,7 +154,7 @@ fn a_simulink_structure_with_time_reads_like_the_csv_export() {
 }
 
 #[test]
-fn an_array_with_a_time_column_and_a_matrix_with_named_columns_are_read() {
+fn an_array_a_matrix_with_named_columns_and_a_scope_structure_are_read() {
     // Period 1 of the S = 500 run: its v_p is fixed_500.csv's first.
     let direct = column(std::path::Path::new(&file("fixed_500.csv")), "v_p")[0];
     let mat = file("simulink_array.mat");
@@ -170,7 +170,10 @@ fn an_array_with_a_time_column_and_a_matrix_with_named_columns_are_read() {
         "--var-v-s",
         "simout(:,3)",
     ]);
-    for r in [&named, &array] {
+    // A Scope's "Structure with time": signals found by their labels,
+    // the time by their struct's.
+    let (_, scope) = report(&[&file("simulink_scope.mat")]);
+    for r in [&named, &array, &scope] {
         let f = &r["files"][0];
         assert_eq!(f["periods"], 1);
         let v = f["v_inf"].as_f64().unwrap();

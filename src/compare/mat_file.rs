@@ -13,7 +13,8 @@
 //!   also the columns by those names;
 //! * Simulink's "Structure with time" and "Structure", a struct `s` with
 //!   `time` (empty in "Structure") and `signals` (`values`, `label`): also
-//!   the column `s.time`, and every signal by its `label` when it has one;
+//!   the column `s.time`, and every signal by its `label` when it has one
+//!   (with the struct's time as `label.time`);
 //!   a struct with one signal also by the variable's name `s` (a "To
 //!   Workspace" block names the variable), `s(:,j)` for a matrix of
 //!   signals.
@@ -347,6 +348,13 @@ fn simulink(name: &str, signals: Option<&MatVariable>, out: &mut Vec<RawColumn>)
         let label = s.get("label").and_then(text).map(|l| l.trim().to_owned());
         if let Some(label) = label.filter(|l| !l.is_empty()) {
             alias(out, &path, &label);
+            // Its time under the label too, so that the signal found by
+            // its label finds its struct's time.
+            let time = format!("{name}.time");
+            if let Some((_, v)) = out.iter().find(|(n, _)| *n == time) {
+                let v = v.clone();
+                out.push((format!("{label}.time"), v));
+            }
         }
         if elements.len() == 1 {
             alias(out, &path, name);

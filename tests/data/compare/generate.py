@@ -43,6 +43,9 @@ these; `main` below says how each is laid out):
                 "Array" layout (simout = [t, x_S, v_S], one row a sample)
                 and as a matrix with named columns (data with colheaders,
                 as MATLAB's importdata returns it).
+  simulink_scope.mat  the same first period as a Scope's "Structure with
+                time": ScopeData with time and a struct array of two
+                signals labelled x_S and v_S.
 
 Run once with `python3 generate.py` in this directory (needs numpy and
 scipy); it takes a few minutes. The files committed were written with
@@ -295,6 +298,20 @@ def exports(rod):
                 "data": np.column_stack([t, x_s, v_s]),
                 "colheaders": np.array(["t", "x_S", "v_S"], dtype=object).reshape(1, 3),
             },
+        },
+        do_compression=True,
+    )
+    signals = np.empty((1, 2), dtype=[("values", object), ("dimensions", object), ("label", object)])
+    signals[0, 0] = (x_s.reshape(-1, 1), 1.0, "x_S")
+    signals[0, 1] = (v_s.reshape(-1, 1), 1.0, "v_S")
+    scipy.io.savemat(
+        "simulink_scope.mat",
+        {
+            "ScopeData": {
+                "time": t.reshape(-1, 1),
+                "signals": signals,
+                "blockName": "stickslip_check/Scope",
+            }
         },
         do_compression=True,
     )
