@@ -52,7 +52,8 @@
 //! 7. `scene`: the validated description of a run ([`Scene`]);
 //! 8. `simulation`: runs a scene ([`simulate`]) with a time budget;
 //! 9. `report` (text and JSON), `check` (the fixed-step cross-check),
-//!    `export`, `compare` (a user's own results against the exact ones),
+//!    `export`, `compare` (a user's own results against the exact ones:
+//!    [`compare`] reads files, [`compare_data`] takes arrays),
 //!    [`sweep`], [`characteristic`] (velocity against load, stall force),
 //!    [`optimize`] (the best drive signal),
 //!    [`plot`] (`plot/<figure family>.rs`);
@@ -89,7 +90,10 @@ mod simulation;
 pub mod sweep;
 
 pub use check::{CheckReport, check};
-pub use compare::{CompareError, CompareOptions, Report as CompareReport, compare};
+pub use compare::{
+    Column as CompareColumn, CompareError, CompareOptions, Report as CompareReport,
+    UserData as CompareData, compare, compare_data,
+};
 pub use engine::event::{EventEngine, EventOptions};
 pub use engine::fixed_step::{FixedStepEngine, FixedStepOptions};
 pub use engine::{

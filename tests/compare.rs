@@ -1,6 +1,10 @@
 //! `stickslip compare` against fixtures from an independent fixed-step
 //! simulation of the paper's motor (tests/data/compare/generate.py, which
-//! shares no code with the engines; scipy's savemat wrote the MAT twin).
+//! shares no code with the engines; scipy's savemat wrote the MAT files):
+//! per-period series and first-period samples at 21 steps, and the
+//! exports users make (trajectories only, of a run stopped before its
+//! start-up ends; Simulink's "Structure with time", "Array", a matrix
+//! with named columns).
 
 use stickslip::cli::{Streams, main_with};
 
@@ -76,7 +80,7 @@ fn v_inf_errors_equal_the_directly_computed_ones() {
 }
 
 #[test]
-fn event_times_are_off_by_about_one_step_and_none_is_missed() {
+fn event_times_of_a_fixed_step_result_are_found_between_samples_and_none_is_missed() {
     for s in [500, 5000] {
         let (_, report) = json(&[&file(&format!("fixed_{s}.csv"))]);
         let f = &report["files"][0];
@@ -89,8 +93,13 @@ fn event_times_are_off_by_about_one_step_and_none_is_missed() {
         assert_eq!(e["missed"], 0);
         assert_eq!(e["spurious"], 0);
         let max = e["max_time_error"].as_f64().unwrap();
-        // A fixed-step result shows an event at the step after it.
-        assert!(max <= 1.5 * step, "{s}: {max} vs step {step}");
+        // The first period's event ends the slip from rest, which the
+        // generator integrates exactly (constant acceleration a_d, exact
+        // at its nodes): the zero of v_rel between the samples is the
+        // exact event to the error of the quadratic through three slip
+        // samples, O(h^3); shown at the step after it, it would be off by
+        // up to one step.
+        assert!(max <= 0.01 * step, "{s}: {max} vs step {step}");
     }
 }
 
@@ -194,17 +203,26 @@ fn bad_data_names_file_column_and_row() {
 }
 
 #[test]
-fn a_figure_is_written() {
-    let path = std::env::temp_dir().join(format!("stickslip-compare-{}.svg", std::process::id()));
-    let (code, _, err) = cli(&[
-        "compare",
-        "examples/scenes/paper_default.toml",
-        &file("fixed_5000.csv"),
-        "--figure",
-        path.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    assert!(std::fs::read_to_string(&path).unwrap().starts_with("<svg"));
+fn the_figure_format_follows_the_extension() {
+    let dir = std::env::temp_dir().join(format!("stickslip-cmp-fig-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (ext, magic) in [
+        ("svg", b"<svg".as_slice()),
+        ("pdf", b"%PDF".as_slice()),
+        ("png", b"\x89PNG".as_slice()),
+    ] {
+        let path = dir.join(format!("cmp.{ext}"));
+        let (code, _, err) = cli(&[
+            "compare",
+            "examples/scenes/paper_default.toml",
+            &file("fixed_5000.csv"),
+            "--figure",
+            path.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let bytes = std::fs::read(&path).unwrap();
+        assert!(bytes.starts_with(magic), "{ext}");
+    }
 }
 
 #[test]

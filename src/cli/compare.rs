@@ -3,11 +3,12 @@
 //! file passes the tolerance, 1 when one fails, 3 for bad input or an
 //! internal error (one line `stickslip: <reason>`), 2 for usage errors.
 
-use super::Streams;
+use super::{Streams, refuse_outputs};
 use crate::compare::read::{LengthUnit, ReadOptions, TimeUnit};
-use crate::compare::{self, CompareOptions, Metric, figure};
+use crate::compare::{self, CompareOptions, Metric};
+use crate::plot::{Format, Preset};
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Exit status of bad input or an internal error in `compare`.
 pub(crate) const EXIT_BAD_INPUT: u8 = 3;
@@ -24,7 +25,8 @@ pub(crate) struct CompareArgs {
     #[command(flatten)]
     set: super::SceneSet,
     /// The user's results: CSV files (columns t, x_S/x, v_S/v, x_R; p, v_p)
-    /// or MATLAB Level 5 MAT-files (.mat, variables of the same names).
+    /// or MATLAB Level 5 MAT-files (.mat: variables of the same names,
+    /// structs, Simulink's "Structure with time").
     #[arg(required = true)]
     data: Vec<PathBuf>,
     /// Unit of the times in the files.
@@ -66,9 +68,13 @@ pub(crate) struct CompareArgs {
     /// Print one JSON object instead of the text report.
     #[arg(long)]
     json: bool,
-    /// Write a figure (SVG): user against exact velocity, per-period error.
+    /// Draw the comparison: .svg, .pdf or .png, with its data as CSV
+    /// beside it.
     #[arg(long, value_name = "FILE")]
     figure: Option<PathBuf>,
+    /// Print preset of the figure (default: single-column).
+    #[arg(long, value_parser = ["single-column", "double-column", "slide"])]
+    style: Option<String>,
     /// Periods A..B shown in the figure's velocity panel (default: the
     /// first period with samples).
     #[arg(long, value_name = "A..B", value_parser = parse_range)]
@@ -104,8 +110,33 @@ pub(crate) fn compare(args: CompareArgs, streams: &mut Streams<'_>) -> u8 {
     }
 }
 
+/// Checks, before anything runs, that the figure can be written and that
+/// neither it nor its data is an input.
+fn check_figure(args: &CompareArgs) -> Result<(), String> {
+    let Some(figure) = &args.figure else {
+        return Ok(());
+    };
+    Format::of(figure).map_err(|e| e.to_string().replacen("-o ", "--figure ", 1))?;
+    let dir = match figure.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_owned(),
+        _ => PathBuf::from("."),
+    };
+    if !dir.is_dir() {
+        return Err(format!(
+            "--figure {}: the directory {} does not exist",
+            figure.display(),
+            dir.display()
+        ));
+    }
+    let data = crate::plot::data_path(figure);
+    let mut inputs: Vec<&Path> = vec![args.scene.as_path()];
+    inputs.extend(args.data.iter().map(PathBuf::as_path));
+    refuse_outputs(&[figure.as_path(), data.as_path()], &inputs)
+}
+
 fn run(args: CompareArgs, streams: &mut Streams<'_>) -> Result<bool, String> {
     let scene = super::load_scene(Some(&args.scene), &args.set)?;
+    check_figure(&args)?;
     let for_positive = |option: &str, value: f64| {
         if value > 0.0 && value.is_finite() {
             Ok(value)
@@ -133,10 +164,19 @@ fn run(args: CompareArgs, streams: &mut Streams<'_>) -> Result<bool, String> {
     };
     let report = compare::compare(&scene, &args.data, &options).map_err(|e| e.to_string())?;
     if let Some(path) = &args.figure {
-        let svg = figure::draw(&report, args.figure_periods)
-            .map_err(|e| format!("cannot draw the figure: {e}"))?;
-        crate::output::write_atomically(path, svg.as_bytes())
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        let name = path
+            .file_stem()
+            .map_or("compare".to_owned(), |s| s.to_string_lossy().into_owned());
+        let figure = crate::plot::compare::figure(&report, args.figure_periods, &name)
+            .map_err(|e| e.to_string())?;
+        let preset = args
+            .style
+            .as_deref()
+            .and_then(Preset::from_name)
+            .unwrap_or(figure.preset);
+        figure
+            .write(path, &preset.style(), 300.0)
+            .map_err(|e| e.to_string())?;
     }
     let text = if args.json {
         let mut t = serde_json::to_string_pretty(&report.to_json()).map_err(|e| e.to_string())?;

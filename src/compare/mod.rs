@@ -1,9 +1,15 @@
-//! Cross-validation of a user's fixed-step results (`stickslip compare`):
-//! the user's files are read ([`read`]), the exact solution is evaluated at
-//! the user's own times ([`exact`]), the rod motion is checked ([`rod`]),
-//! events are detected and matched ([`events`]), errors are measured per
-//! file and, over several files of one scene at different steps, their
-//! convergence order is fitted ([`convergence`]).
+//! Cross-validation of a user's fixed-step results (`stickslip compare`),
+//! in two halves kept apart: the readers turn files into arrays
+//! ([`read`]: names and units; CSV in `csv_file`, MAT-files in
+//! `mat_file`), and the analysis takes arrays ([`compare_data`], for any
+//! caller with arrays): the exact solution is evaluated at the user's own
+//! times ([`exact`]), the per-period series is formed from `x_S` when the
+//! file has none ([`periods`]), the rod motion is checked ([`rod`]),
+//! events are located and matched ([`events`]), errors are measured per
+//! file (`analysis`) and, over several files of one scene at different
+//! steps, their convergence order is fitted ([`convergence`]).
+//! docs/model.md section 12 states the equations of the period ends, the
+//! event times and the split of the `v_inf` error.
 //!
 //! The errors, one table ([`Metric`]) that text, JSON, the verdict and the
 //! fits loop over. Each has an absolute value and a value relative to a
@@ -17,21 +23,28 @@
 //! | `x_S_max`, `x_S_rms` | max and RMS of `x_S,user - x_S` at the user's times | the stroke |
 //! | `v_S_max`, `v_S_rms` | max and RMS of `v_S,user - v_S` | `max abs(v_R)` |
 //! | `event_time_max`, `event_time_rms` | max and RMS time error of the matched events | `T` |
+//!
+//! The `v_inf` error of a file ending at period `P` splits into the
+//! step-size part `v_p,user(P) - v_p(P)` and the truncation part
+//! `v_p(P) - v_inf` ([`VInfSplit`]); the verdict and the order fit of
+//! `v_inf` take the step-size part ([`FileReport::judged`]).
 
+mod analysis;
 pub(crate) mod convergence;
+mod csv_file;
 pub(crate) mod events;
 pub(crate) mod exact;
-pub(crate) mod figure;
+mod mat_file;
+mod output;
+pub(crate) mod periods;
 pub(crate) mod read;
 pub(crate) mod rod;
 
 use crate::scene::{EngineKind, Scene};
-use crate::signal::Signal;
 use crate::signal::description::SignalDescription;
 use crate::simulation;
-use read::{ReadOptions, UserData};
-use serde_json::{Value, json};
-use std::fmt::Write as _;
+use read::ReadOptions;
+pub use read::{Column, UserData};
 use std::path::PathBuf;
 use thiserror::Error;
 
@@ -181,7 +194,7 @@ impl Metric {
         }
     }
 
-    fn index(self) -> usize {
+    pub(crate) fn index(self) -> usize {
         Metric::ALL.iter().position(|m| *m == self).unwrap_or(0)
     }
 }
@@ -250,6 +263,13 @@ pub struct FileReport {
     pub events: Option<events::EventMatch>,
     /// Errors by [`Metric::ALL`] index.
     pub errors: [Option<ErrorValue>; 10],
+    /// How the per-period series was found from the samples (`None`: the
+    /// file's own `v_p`, or no series).
+    pub period_ends: Option<periods::PeriodEnds>,
+    /// The `v_inf` error split into its step-size and truncation parts.
+    pub v_inf_split: Option<VInfSplit>,
+    /// What the reader of the report must know (truncation dominates...).
+    pub warnings: Vec<String>,
     /// Per-period `(p, v_p,user - v_p)`.
     pub period_errors: Vec<(u64, f64)>,
     /// Samples `(t, v_S,user, v_S)` for the figure.
@@ -257,6 +277,43 @@ pub struct FileReport {
     /// True if the chosen metric is within the tolerance; `None` when the
     /// file has no data for it.
     pub pass: Option<bool>,
+}
+
+/// The `v_inf` error of a file whose last period is `P`:
+/// `v_inf,user - v_inf = (v_p,user(P) - v_p(P)) + (v_p(P) - v_inf)`, the
+/// step-size part (the user's `v_p` against the exact `v_p` of the same
+/// period) plus the truncation part (the exact `v_p` of that period
+/// against `v_inf`: the start-up not yet over). Signed, m/s.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct VInfSplit {
+    /// The file's last period `P`.
+    pub period: u64,
+    /// Exact `v_p(P)` (m/s).
+    pub exact_v_p: f64,
+    /// `v_p,user(P) - v_p(P)` (m/s).
+    pub step_size: f64,
+    /// `v_p(P) - v_inf` (m/s).
+    pub truncation: f64,
+    /// `step_size / abs(v_inf)`.
+    pub step_size_relative: f64,
+    /// `truncation / abs(v_inf)`.
+    pub truncation_relative: f64,
+    /// True when `abs(truncation) > abs(step_size)`.
+    pub truncation_dominates: bool,
+}
+
+impl FileReport {
+    /// The error judged by the verdict and fitted over steps: the metric's,
+    /// except for `v_inf`, where it is the step-size part of the split.
+    pub fn judged(&self, metric: Metric) -> Option<ErrorValue> {
+        match (metric, &self.v_inf_split) {
+            (Metric::v_inf, Some(split)) => Some(ErrorValue {
+                absolute: split.step_size.abs(),
+                relative: split.step_size_relative.abs(),
+            }),
+            _ => self.errors[metric.index()],
+        }
+    }
 }
 
 /// A whole comparison.
@@ -280,22 +337,23 @@ pub struct Report {
     pub pass: bool,
 }
 
-fn max_rms(d: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
-    let (mut m, mut s, mut n) = (0.0_f64, 0.0, 0usize);
-    for x in d {
-        m = m.max(x.abs());
-        s += x * x;
-        n += 1;
-    }
-    (n > 0).then(|| (m, (s / n as f64).sqrt()))
-}
-
-/// Compares the user's files with the exact solution of `scene`.
+/// Compares the user's files with the exact solution of `scene`: each
+/// file is read (CSV or MAT, by extension), then the arrays are compared
+/// ([`compare_data`]).
 pub fn compare(
     scene: &Scene,
     files: &[PathBuf],
     options: &CompareOptions,
 ) -> Result<Report, CompareError> {
+    check_options(options)?;
+    let data = files
+        .iter()
+        .map(|path| Ok((path.display().to_string(), read::read(path, &options.read)?)))
+        .collect::<Result<Vec<_>, CompareError>>()?;
+    compare_data(scene, &data, options)
+}
+
+fn check_options(options: &CompareOptions) -> Result<(), CompareError> {
     if !(options.tolerance > 0.0 && options.tolerance.is_finite()) {
         return Err(CompareError::Option {
             option: "--tolerance".into(),
@@ -303,37 +361,56 @@ pub fn compare(
             reason: "must be a positive number".into(),
         });
     }
+    Ok(())
+}
+
+/// Compares results given as arrays, each with the name it is reported
+/// under, with the exact solution of `scene` (`options.read` is not
+/// used: the arrays are in SI units). The data are validated as a file's
+/// are ([`UserData::validate`]).
+pub fn compare_data(
+    scene: &Scene,
+    data: &[(String, UserData)],
+    options: &CompareOptions,
+) -> Result<Report, CompareError> {
+    check_options(options)?;
+    for (name, d) in data {
+        d.validate(name)?;
+    }
     let mut exact_scene = scene.clone();
     exact_scene.run.engine = EngineKind::Event;
     let (signal, motor) = simulation::build(&exact_scene)?;
     let run = simulation::run(&exact_scene)?;
     let v_inf = run.indicators.v_inf;
     let description = SignalDescription::new(&scene.signal, &signal, &motor);
-    let max_periods = scene.run.max_periods;
+    let exact = analysis::Exact {
+        signal: &signal,
+        motor: &motor,
+        description: &description,
+        v_inf,
+        startup_periods: run.startup_periods,
+        max_periods: scene.run.max_periods,
+    };
     let mut reports = Vec::new();
-    for path in files {
-        let data = read::read(path, &options.read)?;
-        reports.push(compare_file(
-            path,
-            &data,
-            &signal,
-            &motor,
-            &description,
-            v_inf,
-            run.startup_periods,
-            max_periods,
-            options,
-        )?);
+    for (name, d) in data {
+        reports.push(analysis::compare_file(name, d, &exact, options)?);
     }
     let metric = options.metric;
     if reports.iter().all(|r| r.pass.is_none()) {
+        let found: Vec<String> = data
+            .iter()
+            .map(|(name, d)| format!("{name} has {}", d.found()))
+            .collect();
         return Err(CompareError::Option {
             option: "--metric".into(),
             value: metric.name().into(),
-            reason: "no file has data for it (v_inf and v_p need p and v_p, startup_periods \
-                     a start-up reaching 99 %, x_S and v_S samples, event times v_S samples \
-                     with events)"
-                .into(),
+            reason: format!(
+                "no file has data for it (v_inf and v_p need p and v_p or the samples x_S over \
+                 a whole period, startup_periods a start-up reaching 99 %, x_S and v_S \
+                 samples, event times v_S samples with events); {}; name columns with \
+                 --var-t, --var-x-s, --var-v-s, --var-x-r, --var-p, --var-v-p",
+                found.join("; ")
+            ),
         });
     }
     let with_step: Vec<&FileReport> = reports.iter().filter(|r| r.step.is_some()).collect();
@@ -344,7 +421,7 @@ pub fn compare(
             .filter_map(|&m| {
                 let pairs: Vec<(f64, f64)> = with_step
                     .iter()
-                    .filter_map(|r| Some((r.step?, r.errors[m.index()]?.relative)))
+                    .filter_map(|r| Some((r.step?, r.judged(m)?.relative)))
                     .collect();
                 (pairs.len() == with_step.len()).then(|| {
                     let (h, e): (Vec<f64>, Vec<f64>) = pairs.into_iter().unzip();
@@ -365,322 +442,4 @@ pub fn compare(
         files: reports,
         convergence,
     })
-}
-
-#[allow(clippy::too_many_arguments)]
-fn compare_file(
-    path: &std::path::Path,
-    data: &UserData,
-    signal: &Signal,
-    motor: &crate::motor::Motor,
-    description: &SignalDescription,
-    v_inf: f64,
-    startup_exact: Option<u64>,
-    max_periods: u64,
-    options: &CompareOptions,
-) -> Result<FileReport, CompareError> {
-    let file = path.display().to_string();
-    let period = signal.period();
-    let span_end = max_periods as f64 * period;
-    let times: &[f64] = data.t.as_ref().map_or(&[], |c| &c.values);
-    if let Some(&last) = times.last()
-        && last > span_end
-    {
-        let name = data.t.as_ref().map_or("t", |c| c.name.as_str());
-        return Err(CompareError::data(
-            &file,
-            Some(name),
-            Some(format!("row {}", times.len())),
-            format!(
-                "time {last} s is after the simulated span, which ends after run.max_periods = \
-                 {max_periods} periods at {span_end} s"
-            ),
-        ));
-    }
-    let user_periods: Vec<u64> = match (&data.p, &data.v_p) {
-        (Some(p), Some(_)) => p.values.iter().map(|&q| q as u64).collect(),
-        (None, Some(v)) => (1..=v.values.len() as u64).collect(),
-        _ => Vec::new(),
-    };
-    if let Some(&p_last) = user_periods.last()
-        && p_last > max_periods
-    {
-        return Err(CompareError::data(
-            &file,
-            Some(data.p.as_ref().map_or("p", |c| c.name.as_str())),
-            Some(format!("row {}", user_periods.len())),
-            format!("period {p_last} is beyond run.max_periods = {max_periods}"),
-        ));
-    }
-    let min_periods = user_periods.last().copied().unwrap_or(0);
-    let exact = exact::evaluate(signal, motor, times, min_periods)?;
-    let mut errors = [None; 10];
-    let mut set = |m: Metric, absolute: f64, scale: f64| {
-        errors[m.index()] = Some(ErrorValue {
-            absolute,
-            relative: absolute / scale,
-        });
-    };
-    // Per-period series.
-    let mut period_errors = Vec::new();
-    let mut user_v_inf = None;
-    let mut user_startup = None;
-    if let Some(v) = &data.v_p {
-        period_errors = user_periods
-            .iter()
-            .zip(&v.values)
-            .map(|(&p, &vp)| (p, vp - exact.periods[p as usize - 1].v_p))
-            .collect();
-        let last = *v.values.last().unwrap_or(&0.0);
-        user_v_inf = Some(last);
-        set(Metric::v_inf, (last - v_inf).abs(), v_inf.abs());
-        if let Some((m, r)) = max_rms(period_errors.iter().map(|e| e.1)) {
-            set(Metric::v_p_max, m, v_inf.abs());
-            set(Metric::v_p_rms, r, v_inf.abs());
-        }
-        user_startup = (last != 0.0)
-            .then(|| {
-                user_periods
-                    .iter()
-                    .zip(&v.values)
-                    .find(|(_, vp)| **vp / last >= 0.99)
-                    .map(|(p, _)| *p)
-            })
-            .flatten();
-        if let (Some(u), Some(e)) = (user_startup, startup_exact) {
-            set(Metric::startup_periods, u.abs_diff(e) as f64, e as f64);
-        }
-    }
-    let states = &exact.states;
-    if let Some(x) = &data.x_s
-        && let Some((m, r)) = max_rms(x.values.iter().zip(states).map(|(u, s)| u - s.x_s))
-    {
-        set(Metric::x_S_max, m, description.stroke);
-        set(Metric::x_S_rms, r, description.stroke);
-    }
-    let v_scale = signal.velocity_scale();
-    let mut event_match = None;
-    let mut velocity = Vec::new();
-    if let Some(v) = &data.v_s {
-        if let Some((m, r)) = max_rms(v.values.iter().zip(states).map(|(u, s)| u - s.v_s)) {
-            set(Metric::v_S_max, m, v_scale);
-            set(Metric::v_S_rms, r, v_scale);
-        }
-        let v_r: Vec<f64> = states.iter().map(|s| s.v_r).collect();
-        let (t0, t1) = (times[0], times[times.len() - 1]);
-        // A change out of the first sample (the start from rest) cannot be
-        // placed in time: left out, like exact events at t0.
-        let mut user = events::detect(times, &v.values, &v_r, options.stick_tolerance * v_scale);
-        user.retain(|e| e.t > t0);
-        let mut exact_events = events::exact_events(&exact.periods, period, t0, t1);
-        exact_events.retain(|e| e.t > t0);
-        let matched = events::match_events(&exact_events, &user, 0.25 * period);
-        if let (Some(m), Some(r)) = (matched.max_time_error, matched.rms_time_error) {
-            set(Metric::event_time_max, m, period);
-            set(Metric::event_time_rms, r, period);
-        }
-        event_match = Some(matched);
-        velocity = times
-            .iter()
-            .zip(&v.values)
-            .zip(states)
-            .map(|((t, u), s)| (*t, *u, s.v_s))
-            .collect();
-    }
-    let rod = data.x_r.as_ref().map(|x| {
-        let exact_x: Vec<f64> = states.iter().map(|s| s.x_r).collect();
-        rod::check(
-            times,
-            &x.values,
-            &exact_x,
-            description,
-            options.rod_tolerance,
-        )
-    });
-    let pass = errors[options.metric.index()].map(|e| e.relative <= options.tolerance);
-    Ok(FileReport {
-        file,
-        samples: times.len(),
-        step: data.step(),
-        span: (!times.is_empty()).then(|| (times[0], times[times.len() - 1])),
-        periods: user_periods.len(),
-        v_inf: user_v_inf,
-        startup_periods: user_startup,
-        rod,
-        events: event_match,
-        errors,
-        period_errors,
-        velocity,
-        pass,
-    })
-}
-
-impl Report {
-    /// The JSON object (keys in docs/interface.md).
-    pub fn to_json(&self) -> Value {
-        let files: Vec<Value> = self
-            .files
-            .iter()
-            .map(|f| {
-                let errors: serde_json::Map<String, Value> = Metric::ALL
-                    .iter()
-                    .map(|m| {
-                        let v = f.errors[m.index()]
-                            .map(|e| json!({"absolute": e.absolute, "relative": e.relative}));
-                        (m.name().to_owned(), json!(v))
-                    })
-                    .collect();
-                json!({
-                    "file": f.file,
-                    "samples": f.samples,
-                    "step": f.step,
-                    "t_first": f.span.map(|s| s.0),
-                    "t_last": f.span.map(|s| s.1),
-                    "periods": f.periods,
-                    "v_inf": f.v_inf,
-                    "startup_periods": f.startup_periods,
-                    "rod": f.rod,
-                    "events": f.events,
-                    "errors": errors,
-                    "pass": f.pass,
-                })
-            })
-            .collect();
-        let convergence: serde_json::Map<String, Value> = self
-            .convergence
-            .iter()
-            .map(|(m, fit)| (m.name().to_owned(), json!(fit)))
-            .collect();
-        json!({
-            "stickslip_version": env!("CARGO_PKG_VERSION"),
-            "period": self.signal.period,
-            "v_inf": self.v_inf,
-            "startup_periods": self.startup_periods,
-            "metric": self.metric.name(),
-            "tolerance": self.tolerance,
-            "pass": self.pass,
-            "files": files,
-            "convergence": convergence,
-        })
-    }
-
-    /// Readable text.
-    pub fn to_text(&self) -> String {
-        let mut s = String::new();
-        let _ = writeln!(
-            s,
-            "exact: T = {:e} s, v_inf = {} m/s, p_0.99 = {}",
-            self.signal.period,
-            self.v_inf,
-            self.startup_periods
-                .map_or("undefined".to_owned(), |p| p.to_string())
-        );
-        for f in &self.files {
-            let _ = writeln!(s, "\n{}", f.file);
-            if let (Some(h), Some((a, b))) = (f.step, f.span) {
-                let _ = writeln!(
-                    s,
-                    "  {} samples, step {h:e} s ({:.1} steps per period), t = {a:e} .. {b:e} s",
-                    f.samples,
-                    self.signal.period / h
-                );
-            }
-            if f.periods > 0 {
-                let _ = writeln!(
-                    s,
-                    "  {} periods, v_inf = {} m/s, p_0.99 = {}",
-                    f.periods,
-                    f.v_inf.unwrap_or(f64::NAN),
-                    f.startup_periods
-                        .map_or("not reached".to_owned(), |p| p.to_string())
-                );
-            }
-            if let Some(r) = &f.rod {
-                if r.matches {
-                    let _ = writeln!(
-                        s,
-                        "  rod: matches the scene (max deviation {:.3e} m, {:.2e} of the stroke)",
-                        r.max_deviation, r.relative_deviation
-                    );
-                } else {
-                    let _ = writeln!(
-                        s,
-                        "  rod: DIFFERS from the scene (max deviation {:.3e} m, {:.2e} of the \
-                         stroke): {}",
-                        r.max_deviation,
-                        r.relative_deviation,
-                        r.message.as_deref().unwrap_or("")
-                    );
-                }
-            }
-            if let Some(e) = &f.events {
-                let _ = writeln!(
-                    s,
-                    "  events: {} exact, {} found, {} matched, {} missed, {} spurious",
-                    e.exact, e.found, e.matched, e.missed, e.spurious
-                );
-            }
-            for m in Metric::ALL {
-                if let Some(e) = f.errors[m.index()] {
-                    let _ = writeln!(
-                        s,
-                        "  {:<16} {:>12.4e} {:<8} relative {:.4e}{}",
-                        m.name(),
-                        e.absolute,
-                        m.unit(),
-                        e.relative,
-                        if (m == Metric::event_time_max || m == Metric::event_time_rms)
-                            && f.step.is_some()
-                        {
-                            format!(" ({:.2} steps)", e.absolute / f.step.unwrap_or(1.0))
-                        } else {
-                            String::new()
-                        }
-                    );
-                }
-            }
-            if let (Some(pass), Some(e)) = (f.pass, f.errors[self.metric.index()]) {
-                let _ = writeln!(
-                    s,
-                    "  verdict: {} ({} relative {:.3e} vs tolerance {:e})",
-                    if pass { "pass" } else { "FAIL" },
-                    self.metric.name(),
-                    e.relative,
-                    self.tolerance
-                );
-            }
-        }
-        if !self.convergence.is_empty() {
-            let _ = writeln!(
-                s,
-                "\nconvergence over {} files (relative errors):",
-                self.files.len()
-            );
-            for (m, fit) in &self.convergence {
-                match (fit.supported, fit.order, fit.standard_error) {
-                    (true, Some(q), Some(se)) => {
-                        let _ = writeln!(
-                            s,
-                            "  {:<16} order {q:.2} ± {se:.2}{}",
-                            m.name(),
-                            fit.step_for_tolerance.map_or(String::new(), |h| format!(
-                                ", step for {:e}: {h:.3e} s",
-                                self.tolerance
-                            ))
-                        );
-                    }
-                    _ => {
-                        let _ = writeln!(
-                            s,
-                            "  {:<16} no order: {}",
-                            m.name(),
-                            fit.reason.as_deref().unwrap_or("")
-                        );
-                    }
-                }
-            }
-        }
-        let _ = writeln!(s, "\nverdict: {}", if self.pass { "pass" } else { "FAIL" });
-        s
-    }
 }

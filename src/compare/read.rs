@@ -1,12 +1,14 @@
-//! Reading a user's result: CSV files (columns by name in a header row)
-//! and MATLAB Level 5 MAT-files (variables by name, compressed or not).
+//! Reading a user's result into arrays ([`UserData`]): CSV files (columns
+//! by name in a header row, `csv_file`) and MATLAB Level 5 MAT-files
+//! (variables, struct fields and Simulink's layouts flattened into named
+//! columns, `mat_file`).
 //!
 //! The quantities and the names they are found under (case-insensitive,
 //! the first name present wins; `--var-*` options replace the list):
 //!
 //! | quantity | names | unit |
 //! | --- | --- | --- |
-//! | time | `t`, `time` | s (or `--time-unit`) |
+//! | time | `t`, `time`, `tout`, else the `time` of the Simulink struct of a found signal | s (or `--time-unit`) |
 //! | slider position | `x_S`, `x` | m (or `--length-unit`) |
 //! | slider velocity | `v_S`, `v` | length unit / time unit |
 //! | rod position | `x_R` | length unit |
@@ -29,7 +31,7 @@ use super::CompareError;
 use std::path::Path;
 
 /// A column as read: its name and its values, or why it cannot be used.
-type RawColumn = (String, Result<Vec<f64>, (Option<String>, String)>);
+pub(crate) type RawColumn = (String, Result<Vec<f64>, (Option<String>, String)>);
 
 /// Unit of the time values in a user's file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
@@ -108,7 +110,7 @@ impl Quantity {
     /// The names the quantity is looked up under by default.
     pub(crate) fn default_names(self) -> &'static [&'static str] {
         match self {
-            Quantity::Time => &["t", "time"],
+            Quantity::Time => &["t", "time", "tout"],
             Quantity::SliderPosition => &["x_S", "x"],
             Quantity::SliderVelocity => &["v_S", "v"],
             Quantity::RodPosition => &["x_R"],
@@ -152,16 +154,19 @@ impl ReadOptions {
 
 /// One column of a user's data, in SI units.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Column {
+pub struct Column {
     /// The name in the file.
     pub name: String,
     /// The values.
     pub values: Vec<f64>,
 }
 
-/// A user's result, validated.
+/// A user's result as arrays in SI units: what the readers of CSV and
+/// MAT-files return, and what the analysis ([`super::compare_data`])
+/// takes, whatever the data came from. [`UserData::validate`] states the
+/// contract.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub(crate) struct UserData {
+pub struct UserData {
     /// Sample times (s).
     pub t: Option<Column>,
     /// Slider positions at the sample times (m).
@@ -176,7 +181,65 @@ pub(crate) struct UserData {
     pub v_p: Option<Column>,
 }
 
+impl Column {
+    /// A column named `name` (for messages) holding `values`.
+    pub fn new(name: &str, values: Vec<f64>) -> Self {
+        Column {
+            name: name.to_owned(),
+            values,
+        }
+    }
+}
+
 impl UserData {
+    /// Checks the contract of the module doc (finite values, times `>= 0`
+    /// and increasing, sample columns as long as the time column, period
+    /// indices increasing integers `>= 1`, something to compare); errors
+    /// name `file`, the column and the element.
+    pub fn validate(&self, file: &str) -> Result<(), CompareError> {
+        let all = [&self.t, &self.x_s, &self.v_s, &self.x_r, &self.p, &self.v_p];
+        for c in all.into_iter().flatten() {
+            if let Some(i) = c.values.iter().position(|v| !v.is_finite()) {
+                return Err(CompareError::data(
+                    file,
+                    Some(&c.name),
+                    Some(Origin::Mat.row(i, &[])),
+                    format!("{} is not a finite number", c.values[i]),
+                ));
+            }
+        }
+        validate(self, file, &Origin::Mat, &[], &[])
+    }
+
+    /// What the data hold, for messages: `t (N values), x_S (N values)...`
+    /// under the names they were found by.
+    pub(crate) fn found(&self) -> String {
+        let all = [
+            ("t", &self.t),
+            ("x_S", &self.x_s),
+            ("v_S", &self.v_s),
+            ("x_R", &self.x_r),
+            ("p", &self.p),
+            ("v_p", &self.v_p),
+        ];
+        let held: Vec<String> = all
+            .iter()
+            .filter_map(|(q, c)| {
+                let c = c.as_ref()?;
+                Some(if c.name == *q {
+                    format!("{q} ({} values)", c.values.len())
+                } else {
+                    format!("{q} = {} ({} values)", c.name, c.values.len())
+                })
+            })
+            .collect();
+        if held.is_empty() {
+            "nothing".to_owned()
+        } else {
+            held.join(", ")
+        }
+    }
+
     /// The fixed step of the time column: the median sample spacing (s).
     pub(crate) fn step(&self) -> Option<f64> {
         let t = &self.t.as_ref()?.values;
@@ -223,18 +286,18 @@ pub(crate) fn read(path: &Path, options: &ReadOptions) -> Result<UserData, Compa
             .iter()
             .flat_map(|q| options.names(*q))
             .collect();
-        let (c, l) = read_csv(path, &file, &wanted)?;
+        let (c, l) = super::csv_file::columns(path, &file, &wanted)?;
         (c, l, Origin::Csv)
     };
     let mut data = UserData::default();
     for q in Quantity::ALL {
         let names = options.names(q);
-        let found = names.iter().find_map(|n| {
+        let hit = names.iter().find_map(|n| {
             columns
                 .iter()
                 .find(|(name, _)| name.eq_ignore_ascii_case(n))
         });
-        let Some((name, raw)) = found else {
+        let Some((name, raw)) = hit else {
             if matches!(q, Quantity::Time) || options.names[index(q)].is_none() {
                 continue;
             }
@@ -242,7 +305,11 @@ pub(crate) fn read(path: &Path, options: &ReadOptions) -> Result<UserData, Compa
                 &file,
                 names.first().map(String::as_str),
                 None,
-                format!("no such {}", if is_mat { "variable" } else { "column" }),
+                format!(
+                    "no such {}; found {}",
+                    if is_mat { "variable" } else { "column" },
+                    found(&columns)
+                ),
             ));
         };
         let raw = raw.as_ref().map_err(|(row, reason)| {
@@ -279,15 +346,59 @@ pub(crate) fn read(path: &Path, options: &ReadOptions) -> Result<UserData, Compa
             &file,
             options.names[0].as_deref(),
             None,
-            "no such column or variable".to_owned(),
+            format!("no such column or variable; found {}", found(&columns)),
         ));
+    }
+    if data.t.is_none() {
+        data.t = own_time(&data, &columns, options.time_unit.factor(), &file)?;
     }
     validate(&data, &file, &origin, &lines, &columns)?;
     Ok(data)
 }
 
+/// The time of a Simulink struct whose signals were found: `s.time` for
+/// the columns `s`, `s(:,j)`, `s.signals...` (the first such struct with a
+/// non-empty time).
+fn own_time(
+    data: &UserData,
+    columns: &[RawColumn],
+    factor: f64,
+    file: &str,
+) -> Result<Option<Column>, CompareError> {
+    let used = [&data.x_s, &data.v_s, &data.x_r];
+    for c in used.into_iter().flatten() {
+        let prefix = c.name.split(['.', '(']).next().unwrap_or("");
+        let name = format!("{prefix}.time");
+        let Some((name, raw)) = columns.iter().find(|(n, v)| {
+            n.eq_ignore_ascii_case(&name) && v.as_ref().is_ok_and(|v| !v.is_empty())
+        }) else {
+            continue;
+        };
+        let raw = raw
+            .as_ref()
+            .map_err(|(row, r)| CompareError::data(file, Some(name), row.clone(), r.clone()))?;
+        let mut values = Vec::with_capacity(raw.len());
+        for (i, v) in raw.iter().enumerate() {
+            if !v.is_finite() {
+                return Err(CompareError::data(
+                    file,
+                    Some(name),
+                    Some(format!("element {}", i + 1)),
+                    format!("{v} is not a finite number"),
+                ));
+            }
+            values.push(v * factor);
+        }
+        return Ok(Some(Column {
+            name: name.clone(),
+            values,
+        }));
+    }
+    Ok(None)
+}
+
 /// Reads only sample times (s): a CSV or MAT-file with a time column or
-/// variable (`t`, `time`), or a text file with one time per line.
+/// variable (`t`, `time`, `tout`), or a text file with one time per line.
 pub(crate) fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>, CompareError> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path);
@@ -344,7 +455,7 @@ pub(crate) fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>,
             .iter()
             .map(|n| (*n).to_owned())
             .collect();
-        let (c, l) = read_csv(path, &file, &wanted)?;
+        let (c, l) = super::csv_file::columns(path, &file, &wanted)?;
         (c, l, Origin::Csv)
     };
     let Some((name, raw)) = Quantity::Time
@@ -356,7 +467,7 @@ pub(crate) fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>,
             &file,
             Some("t"),
             None,
-            "no such column or variable".to_owned(),
+            format!("no such column or variable; found {}", found(&columns)),
         ));
     };
     let raw = raw
@@ -425,19 +536,15 @@ fn validate(
     let samples = [&data.x_s, &data.v_s, &data.x_r];
     let has_samples = samples.iter().any(|c| c.is_some());
     if data.v_p.is_none() && !has_samples {
-        let found: Vec<&str> = columns.iter().map(|(n, _)| n.as_str()).collect();
         return Err(CompareError::data(
             file,
             None,
             None,
             format!(
                 "nothing to compare: expected t with x_S (or x), v_S (or v) or x_R, or the \
-                 per-period v_p; found {}",
-                if found.is_empty() {
-                    "nothing".to_owned()
-                } else {
-                    found.join(", ")
-                }
+                 per-period v_p; found {}; name them with --var-t, --var-x-s, --var-v-s, \
+                 --var-x-r, --var-p, --var-v-p",
+                found(columns)
             ),
         ));
     }
@@ -475,7 +582,11 @@ fn validate(
             file,
             Some(&c.name),
             None,
-            "samples need a time column (t or time, or --var-t)".to_owned(),
+            format!(
+                "samples need a time column (t, time, tout or a Simulink struct's time); found \
+                 {}; name it with --var-t",
+                found(columns)
+            ),
         ));
     }
     if let (Some(p), Some(v)) = (&data.p, &data.v_p) {
@@ -496,144 +607,22 @@ fn validate(
     Ok(())
 }
 
-/// The columns of a CSV file (name, raw values) and the file line of every
-/// data row.
-/// Only columns named in `wanted` (case-insensitive) are parsed; the others
-/// are returned empty.
-fn read_csv(
-    path: &Path,
-    file: &str,
-    wanted: &[String],
-) -> Result<(Vec<RawColumn>, Vec<usize>), CompareError> {
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .flexible(false)
-        .from_path(path)
-        .map_err(|e| CompareError::io(file, e.to_string()))?;
-    let header: Vec<String> = reader
-        .headers()
-        .map_err(|e| CompareError::io(file, e.to_string()))?
-        .iter()
-        .map(str::to_owned)
-        .collect();
-    if header.iter().all(String::is_empty) {
-        return Err(CompareError::data(
-            file,
-            None,
-            None,
-            "no header row with column names".to_owned(),
-        ));
-    }
-    let mut columns: Vec<RawColumn> = header.iter().map(|n| (n.clone(), Ok(Vec::new()))).collect();
-    let parse: Vec<bool> = header
-        .iter()
-        .map(|n| wanted.iter().any(|w| w.eq_ignore_ascii_case(n)))
-        .collect();
-    // Row index at which each column ended (its first empty cell).
-    let mut ended: Vec<Option<usize>> = vec![None; header.len()];
-    let mut lines = Vec::new();
-    let mut record = csv::StringRecord::new();
-    let mut row = 0;
-    loop {
-        match reader.read_record(&mut record) {
-            Ok(false) => break,
-            Ok(true) => {}
-            Err(e) => return Err(CompareError::io(file, e.to_string())),
-        }
-        let line = record.position().map_or(0, |p| p.line() as usize);
-        lines.push(line);
-        for (j, cell) in record.iter().enumerate() {
-            if !parse[j] {
-                continue;
-            }
-            // A column that cannot be read is an error only if it is used.
-            let Ok(values) = &mut columns[j].1 else {
-                continue;
-            };
-            let at = Some(format!("row {} (line {line})", row + 1));
-            if cell.is_empty() {
-                ended[j].get_or_insert(row);
-                continue;
-            }
-            if let Some(end) = ended[j] {
-                columns[j].1 = Err((
-                    at,
-                    format!(
-                        "a value after the empty cell of row {}: a column may only end \
-                         early, not have gaps",
-                        end + 1
-                    ),
-                ));
-                continue;
-            }
-            match cell.parse::<f64>() {
-                Ok(v) => values.push(v),
-                Err(_) => columns[j].1 = Err((at, format!("`{cell}` is not a number"))),
-            }
-        }
-        row += 1;
-    }
-    Ok((columns, lines))
-}
-/// The variables of a MAT-file (name, values, or why the variable is not a
-/// real numeric vector; that is an error only when the variable is used).
+/// The flattened variables of a MAT-file ([`super::mat_file`]).
 fn read_mat(path: &Path, file: &str) -> Result<Vec<RawColumn>, CompareError> {
-    let bytes = std::fs::File::open(path).map_err(|e| CompareError::io(file, e.to_string()))?;
-    let mat = matfile::MatFile::parse(std::io::BufReader::new(bytes)).map_err(|e| {
-        CompareError::data(
-            file,
-            None,
-            None,
-            format!("not a MATLAB Level 5 MAT-file ({e})"),
-        )
-    })?;
-    Ok(mat
-        .arrays()
-        .iter()
-        .map(|array| {
-            let size = array.size();
-            let shape = size
-                .iter()
-                .map(usize::to_string)
-                .collect::<Vec<_>>()
-                .join("x");
-            let values = match to_f64(array.data()) {
-                None => Err((
-                    None,
-                    format!("is a complex {shape} array, not a real numeric vector"),
-                )),
-                Some(_) if size.iter().filter(|&&n| n > 1).count() > 1 => {
-                    Err((None, format!("is a {shape} array, not a vector")))
-                }
-                Some(v) => Ok(v),
-            };
-            (array.name().to_owned(), values)
-        })
-        .collect())
+    let bytes = std::fs::read(path).map_err(|e| CompareError::io(file, e.to_string()))?;
+    super::mat_file::columns(&bytes, file)
 }
 
-/// Real values as doubles, or `None` for complex data.
-fn to_f64(data: &matfile::NumericData) -> Option<Vec<f64>> {
-    use matfile::NumericData as D;
-    fn conv<T: Copy + Into<f64>>(real: &[T], imag: &Option<Vec<T>>) -> Option<Vec<f64>> {
-        imag.is_none()
-            .then(|| real.iter().map(|&x| x.into()).collect())
+/// The names found in a file, for messages.
+pub(crate) fn found(columns: &[RawColumn]) -> String {
+    if columns.is_empty() {
+        return "nothing".to_owned();
     }
-    match data {
-        D::Int8 { real, imag } => conv(real, imag),
-        D::UInt8 { real, imag } => conv(real, imag),
-        D::Int16 { real, imag } => conv(real, imag),
-        D::UInt16 { real, imag } => conv(real, imag),
-        D::Int32 { real, imag } => conv(real, imag),
-        D::UInt32 { real, imag } => conv(real, imag),
-        D::Int64 { real, imag } => imag
-            .is_none()
-            .then(|| real.iter().map(|&x| x as f64).collect()),
-        D::UInt64 { real, imag } => imag
-            .is_none()
-            .then(|| real.iter().map(|&x| x as f64).collect()),
-        D::Single { real, imag } => conv(real, imag),
-        D::Double { real, imag } => conv(real, imag),
+    let names: Vec<&str> = columns.iter().map(|(n, _)| n.as_str()).collect();
+    let shown = names.len().min(24);
+    let mut text = names[..shown].join(", ");
+    if names.len() > shown {
+        text.push_str(&format!(" and {} more", names.len() - shown));
     }
+    text
 }

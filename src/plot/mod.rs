@@ -28,7 +28,9 @@
 //! * [`scaling`]: figure 9 and the stroke scaling law;
 //! * [`timeline`]: the slider's modes over the start-up;
 //! * [`characteristic`]: `v_inf` against the load, with the stall force
-//!   and the output power.
+//!   and the output power;
+//! * [`compare`]: a user's fixed-step results against the exact solution
+//!   (`stickslip compare`).
 //! * [`optimize`]: an optimal signal against the sigma signal, and the
 //!   `n = 2` design plane as a heat map.
 //!
@@ -47,6 +49,7 @@
 mod axes;
 mod canvas;
 pub mod characteristic;
+pub mod compare;
 mod data;
 pub(crate) mod export;
 mod font;

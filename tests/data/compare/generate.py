@@ -26,9 +26,33 @@ step h = T / (n S)):
                 series without the shift of the minimum to t = 0, with the
                 phases of the harmonics negated, and without stroke scaling.
 
+Exports as users make them (`python3 generate.py exports` writes only
+these; `main` below says how each is laid out):
+
+  trajectory_500.csv  the S = 500 run stopped after EXPORT_PERIODS = 300
+                periods, before its start-up ends (p_0.99 = 388): only the
+                trajectories t, x_S, v_S, every EXPORT_EVERY = 13th step
+                (a "To Workspace" block with decimation 13) and at the stop
+                time, so that most period ends fall between samples. The same run as
+                fixed_500.csv: its v_p of period 300 is that file's.
+  simulink_500.mat  the same samples as Simulink's "Structure with time"
+                writes them from two "To Workspace" blocks named x_S and
+                v_S (each a struct with time, signals.values,
+                signals.dimensions, signals.label, blockName), with tout.
+  simulink_array.mat  the first period of the S = 500 run in Simulink's
+                "Array" layout (simout = [t, x_S, v_S], one row a sample)
+                and as a matrix with named columns (data with colheaders,
+                as MATLAB's importdata returns it).
+  simulink_scope.mat  the same first period as a Scope's "Structure with
+                time": ScopeData with time and a struct array of two
+                signals labelled x_S and v_S.
+
 Run once with `python3 generate.py` in this directory (needs numpy and
-scipy); it takes a few minutes.
+scipy); it takes a few minutes. The files committed were written with
+numpy 2.4.6 and scipy 1.17.1 (the exports) and by earlier versions (the
+rest).
 """
+import sys
 
 import math
 
@@ -142,7 +166,13 @@ class Rod:
         return series(self.a, self.b, self.period, t + self.shift, 2)
 
 
-def simulate(rod, steps_per_harmonic, periods):
+# The exports (see the module doc).
+EXPORT_RESOLUTION = 500
+EXPORT_PERIODS = 300
+EXPORT_EVERY = 13
+
+
+def simulate(rod, steps_per_harmonic, periods, every=1, record_periods=1):
     """Explicit fixed-step stick-slip integration from rest.
 
     Per step of length h from t_i to t_{i+1}:
@@ -153,8 +183,11 @@ def simulate(rod, steps_per_harmonic, periods):
       t_i; when v_R - v_S changes sign over the step it sticks if
       |a_R(t_{i+1})| <= a_0 (and v_S snaps to v_R), else it slips on the
       other way.
-    Returns the first period's samples (t, x_S, v_S) and the per-period
-    mean velocities v_p = (x_S(pT) - x_S((p-1)T)) / T.
+    Returns the samples (t, x_S, v_S) of the first `record_periods`
+    periods at every `every`-th step (t = k h for step k) and at their
+    end (a logged run ends with its stop time), the per-period
+    mean velocities v_p = (x_S(pT) - x_S((p-1)T)) / T and the rod
+    positions of the first period.
     """
     n = N_HARM * steps_per_harmonic
     period = rod.period
@@ -168,7 +201,7 @@ def simulate(rod, steps_per_harmonic, periods):
         mode = 0
     else:
         mode = 1 if a_r[0] > 0 else -1
-    samples_x, samples_v = [x_s], [v_s]
+    samples_t, samples_x, samples_v = [0.0], [x_s], [v_s]
     v_p = []
     half_h2 = 0.5 * h * h
     for p in range(periods):
@@ -194,11 +227,20 @@ def simulate(rod, steps_per_harmonic, periods):
                         v_s = v_r[i + 1]
                     else:
                         mode = -mode
-            if p == 0:
+            k = p * n + i + 1
+            last = p == record_periods - 1 and i == n - 1
+            if p < record_periods and (k % every == 0 or last):
+                samples_t.append(k * h)
                 samples_x.append(x_s)
                 samples_v.append(v_s)
         v_p.append((x_s - x_start) / period)
-    return t_grid, np.array(samples_x), np.array(samples_v), np.array(v_p), x_r
+    return (
+        np.array(samples_t),
+        np.array(samples_x),
+        np.array(samples_v),
+        np.array(v_p),
+        x_r,
+    )
 
 
 def write_columns(path, columns, fmt="%.17g"):
@@ -215,8 +257,72 @@ def write_columns(path, columns, fmt="%.17g"):
             f.write(",".join(cells) + "\n")
 
 
+def simulink_struct(name, t, values):
+    """A "To Workspace" block's "Structure with time" (scipy writes a dict
+    as a MATLAB struct, a str as a char array)."""
+    return {
+        "time": t.reshape(-1, 1),
+        "signals": {
+            "values": values.reshape(-1, 1),
+            "dimensions": 1.0,
+            "label": "",
+        },
+        "blockName": f"stickslip_check/{name}",
+    }
+
+
+def exports(rod):
+    t, x_s, v_s, v_p, _ = simulate(
+        rod, EXPORT_RESOLUTION, EXPORT_PERIODS, EXPORT_EVERY, EXPORT_PERIODS
+    )
+    write_columns(
+        f"trajectory_{EXPORT_RESOLUTION}.csv", {"t": t, "x_S": x_s, "v_S": v_s}, "%.15g"
+    )
+    scipy.io.savemat(
+        f"simulink_{EXPORT_RESOLUTION}.mat",
+        {
+            "x_S": simulink_struct("x_S", t, x_s),
+            "v_S": simulink_struct("v_S", t, v_s),
+            "tout": t.reshape(-1, 1),
+        },
+        do_compression=True,
+        oned_as="column",
+    )
+    print(f"exports: v_p({EXPORT_PERIODS}) = {float(v_p[-1])!r} m/s")
+    t, x_s, v_s, _, _ = simulate(rod, EXPORT_RESOLUTION, 1)
+    scipy.io.savemat(
+        "simulink_array.mat",
+        {
+            "simout": np.column_stack([t, x_s, v_s]),
+            "table": {
+                "data": np.column_stack([t, x_s, v_s]),
+                "colheaders": np.array(["t", "x_S", "v_S"], dtype=object).reshape(1, 3),
+            },
+        },
+        do_compression=True,
+    )
+    signals = np.empty((1, 2), dtype=[("values", object), ("dimensions", object), ("label", object)])
+    signals[0, 0] = (x_s.reshape(-1, 1), 1.0, "x_S")
+    signals[0, 1] = (v_s.reshape(-1, 1), 1.0, "v_S")
+    scipy.io.savemat(
+        "simulink_scope.mat",
+        {
+            "ScopeData": {
+                "time": t.reshape(-1, 1),
+                "signals": signals,
+                "blockName": "stickslip_check/Scope",
+            }
+        },
+        do_compression=True,
+    )
+
+
 def main():
     rod = Rod()
+    if sys.argv[1:] == ["exports"]:
+        exports(rod)
+        return
+    exports(rod)
     for s in RESOLUTIONS:
         t, x_s, v_s, v_p, x_r = simulate(rod, s, PERIODS)
         columns = {"t": t, "x_S": x_s, "v_S": v_s}
