@@ -6,29 +6,15 @@
 //! start-up ends; Simulink's "Structure with time", "Array", a matrix
 //! with named columns).
 
-use stickslip::cli::{Streams, main_with};
+mod common;
+
+use common::in_process as cli;
 
 const DIR: &str = "tests/data/compare";
 const RESOLUTIONS: [u32; 21] = [
     500, 561, 629, 706, 792, 889, 998, 1119, 1256, 1409, 1581, 1774, 1991, 2233, 2506, 2812, 3155,
     3540, 3972, 4456, 5000,
 ];
-
-fn cli(args: &[&str]) -> (u8, String, String) {
-    let (mut out, mut err) = (Vec::new(), Vec::new());
-    let mut streams = Streams {
-        out: &mut out,
-        err: &mut err,
-    };
-    let mut all = vec!["stickslip"];
-    all.extend_from_slice(args);
-    let code = main_with(all, &mut streams);
-    (
-        code,
-        String::from_utf8(out).unwrap(),
-        String::from_utf8(err).unwrap(),
-    )
-}
 
 fn file(name: &str) -> String {
     format!("{DIR}/{name}")

@@ -12,29 +12,15 @@
 //! period 300 and `v_inf` come from `stickslip run` (`--periods-series`,
 //! `--json`).
 
-use stickslip::cli::{Streams, main_with};
+mod common;
+
+use common::in_process as cli;
 use stickslip::{CompareColumn, CompareData, CompareOptions, Scene};
 
 const DIR: &str = "tests/data/compare";
 const SCENE: &str = "examples/scenes/paper_default.toml";
 /// The export's last period (generate.py EXPORT_PERIODS).
 const LAST: usize = 300;
-
-fn cli(args: &[&str]) -> (u8, String, String) {
-    let (mut out, mut err) = (Vec::new(), Vec::new());
-    let mut streams = Streams {
-        out: &mut out,
-        err: &mut err,
-    };
-    let mut all = vec!["stickslip"];
-    all.extend_from_slice(args);
-    let code = main_with(all, &mut streams);
-    (
-        code,
-        String::from_utf8(out).unwrap(),
-        String::from_utf8(err).unwrap(),
-    )
-}
 
 fn file(name: &str) -> String {
     format!("{DIR}/{name}")

@@ -3,27 +3,13 @@
 //! input. Fixtures: tests/data/compare (generate.py).
 
 use std::path::{Path, PathBuf};
-use stickslip::cli::{Streams, main_with};
+mod common;
+
+use common::in_process as cli;
 use stickslip::plot::Preset;
 use stickslip::{CompareOptions, Scene};
 
 const SCENE: &str = "examples/scenes/paper_default.toml";
-
-fn cli(args: &[&str]) -> (u8, String, String) {
-    let (mut out, mut err) = (Vec::new(), Vec::new());
-    let mut streams = Streams {
-        out: &mut out,
-        err: &mut err,
-    };
-    let mut all = vec!["stickslip"];
-    all.extend_from_slice(args);
-    let code = main_with(all, &mut streams);
-    (
-        code,
-        String::from_utf8(out).unwrap(),
-        String::from_utf8(err).unwrap(),
-    )
-}
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("stickslip-cmpfig-{}-{name}", std::process::id()));

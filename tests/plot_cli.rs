@@ -3,7 +3,7 @@
 //! validated like scenes (one line, exit 1, nothing created).
 
 use std::path::{Path, PathBuf};
-use stickslip::cli::{Streams, main_with};
+mod common;
 
 const SWEEP_CSV: &str = "# stickslip_version = 0.1.0, base_scene_hash = 0\n\
 case,level,harmonics,sigma,v_inf,regime,failure\n\
@@ -14,20 +14,11 @@ case,level,harmonics,sigma,v_inf,regime,failure\n\
 4,6,3,false,,,time limit reached\n\
 5,6,4,false,0.05,slip-slip,\n";
 
+/// `stickslip plot ARGS...` in this process.
 fn cli(args: &[&str]) -> (u8, String, String) {
-    let (mut out, mut err) = (Vec::new(), Vec::new());
-    let mut streams = Streams {
-        out: &mut out,
-        err: &mut err,
-    };
-    let mut all = vec!["stickslip", "plot"];
+    let mut all = vec!["plot"];
     all.extend_from_slice(args);
-    let code = main_with(all, &mut streams);
-    (
-        code,
-        String::from_utf8(out).unwrap(),
-        String::from_utf8(err).unwrap(),
-    )
+    common::in_process(&all)
 }
 
 /// A fresh directory for one test.

@@ -267,3 +267,27 @@ fn messages_show_the_value_given_and_stay_one_line() {
     assert!(!err.contains('\r') && err.contains("\\r"), "{err:?}");
     assert_eq!(err.lines().count(), 1, "{err:?}");
 }
+
+/// `--set signal.frequency` (or `f_max`) on a scene that gives `kappa`
+/// replaces it: the run has that `f_0` (`f_max = n f_0`, docs/model.md
+/// section 2), not the error of a scene that gives two drives.
+#[test]
+fn a_frequency_set_on_the_command_line_replaces_the_scene_s_kappa() {
+    assert!(
+        stickslip::Scene::default()
+            .to_toml()
+            .contains("kappa = 36.0")
+    );
+    let f0 = |args: &[&str]| {
+        let o = stickslip(args);
+        let v = json(&o);
+        assert!(o.status.success(), "{args:?}");
+        (v["f0"].as_f64().unwrap(), v["f_max"].as_f64().unwrap())
+    };
+    let (f_0, f_max) = f0(&["run", "--json", "-q", "--set", "signal.frequency=9000"]);
+    assert_eq!(f_0, 9000.0);
+    assert_eq!(f_max, 2.0 * 9000.0);
+    let (f_0, f_max) = f0(&["run", "--json", "-q", "--set", "signal.f_max=2e4"]);
+    assert_eq!(f_max, 2e4);
+    assert!((f_0 - 1e4).abs() <= 1e-9, "{f_0}");
+}

@@ -83,20 +83,9 @@ pub(super) fn certified_limit<E: PeriodEngine>(
                 rejected.push(steady.boundary_velocity);
                 let (lo, hi) = (near.min(far), near.max(far));
                 let before = engine.counters().periods;
-                let (v, d, iterations, correction) =
-                    analysis::fixed_point_between(engine, lo, hi, near)?;
                 // A fresh observation of the new steady period.
                 *trajectory = trajectory.as_ref().map(|_| Trajectory::default());
-                let next = analysis::steady_state_at(
-                    engine,
-                    PeriodStart {
-                        velocity: v,
-                        mode: None,
-                    },
-                    (Some(d), iterations, correction),
-                    wanted,
-                    trajectory,
-                )?;
+                let next = steady_between(engine, (lo, hi), near, wanted, trajectory)?;
                 spent += (engine.counters().periods - before) as u32;
                 let Some(b) = established_bound(engine.signal(), &next) else {
                     return Ok(None);
@@ -243,8 +232,21 @@ pub(super) fn covering_search<E: PeriodEngine>(
         _ => return Ok(Search::Nothing),
     };
     let (lo, hi) = (near.min(far), near.max(far));
-    let (v, d, iterations, correction) = analysis::fixed_point_between(engine, lo, hi, near)?;
-    let steady = analysis::steady_state_at(
+    let steady = steady_between(engine, (lo, hi), near, wanted, trajectory)?;
+    Ok(Search::Found(steady, near, evaluations))
+}
+
+/// The steady state at the fixed point in the bracket `[lo, hi]` that the
+/// covering found, searched from `start`, with its period observed.
+fn steady_between<E: PeriodEngine, O: crate::engine::Observer>(
+    engine: &mut E,
+    (lo, hi): (f64, f64),
+    start: f64,
+    wanted: StatsWanted,
+    observer: &mut O,
+) -> Result<SteadyState, Error> {
+    let (v, d, iterations, correction) = analysis::fixed_point_between(engine, lo, hi, start)?;
+    Ok(analysis::steady_state_at(
         engine,
         PeriodStart {
             velocity: v,
@@ -252,7 +254,6 @@ pub(super) fn covering_search<E: PeriodEngine>(
         },
         (Some(d), iterations, correction),
         wanted,
-        trajectory,
-    )?;
-    Ok(Search::Found(steady, near, evaluations))
+        observer,
+    )?)
 }

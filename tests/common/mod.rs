@@ -139,6 +139,25 @@ pub fn stickslip(args: &[&str]) -> Output {
         .expect("the binary runs")
 }
 
+/// Runs the command line `stickslip ARGS...` in this process (the code
+/// path of the binary, `stickslip::cli::main_with`): the exit status, the
+/// output and the error stream.
+pub fn in_process(args: &[&str]) -> (u8, String, String) {
+    let (mut out, mut err) = (Vec::new(), Vec::new());
+    let mut streams = stickslip::cli::Streams {
+        out: &mut out,
+        err: &mut err,
+    };
+    let mut all = vec!["stickslip"];
+    all.extend_from_slice(args);
+    let code = stickslip::cli::main_with(all, &mut streams);
+    (
+        code,
+        String::from_utf8(out).unwrap(),
+        String::from_utf8(err).unwrap(),
+    )
+}
+
 /// The error stream of a run that must succeed.
 pub fn ok(o: Output) -> String {
     let err = String::from_utf8_lossy(&o.stderr).into_owned();
