@@ -347,12 +347,17 @@ pub fn to_text(outcome: &Outcome) -> String {
                 None => {
                     let _ = writeln!(
                         out,
-                        "outcome: run-away ({}): no periodic steady state; after {} periods the \
-                         slider slides at {} m/s outside the rod's velocity range, without any \
-                         event, and keeps accelerating (motor.extra_acceleration exceeds what \
-                         sliding friction can hold)",
+                        "outcome: run-away ({}): no periodic steady state; after {} period{} \
+                         the slider slides at {} m/s outside the rod's velocity range, without \
+                         any event, and keeps accelerating (motor.extra_acceleration exceeds \
+                         what sliding friction can hold)",
                         direction_name(*direction),
                         state.periods_simulated,
+                        if state.periods_simulated == 1 {
+                            ""
+                        } else {
+                            "s"
+                        },
                         format_with_error(state.final_velocity, None),
                     );
                 }

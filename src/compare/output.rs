@@ -81,8 +81,9 @@ impl Report {
             if let (true, Some(v)) = (f.periods > 0, f.v_inf) {
                 let _ = writeln!(
                     s,
-                    "  {} periods, v_inf = {v} m/s, p_0.99 = {}",
+                    "  {} period{}, v_inf = {v} m/s, p_0.99 = {}",
                     f.periods,
+                    if f.periods == 1 { "" } else { "s" },
                     f.startup_periods
                         .map_or("not reached".to_owned(), |p| p.to_string())
                 );
