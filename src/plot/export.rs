@@ -1,8 +1,8 @@
 //! Print-ready files: SVG as drawn, PDF through svg2pdf and PNG through
 //! resvg, the format chosen by the output's extension.
 //!
-//! Contract: PDF and PNG are rendered with only the shipped font
-//! (`src/plot/font.rs`, DejaVu Sans) loaded, so their bytes do not depend on the machine's
+//! Contract: PDF and PNG are rendered with only the shipped fonts
+//! (`src/plot/font.rs`, DejaVu Sans and its oblique face) loaded, so their bytes do not depend on the machine's
 //! fonts; the PDF embeds a subset of it (its text stays text) on a page of
 //! the figure's printed size, with the program version in its information
 //! dictionary; the PNG is `width_mm / 25.4 × dpi` pixels wide, on white,
@@ -11,7 +11,7 @@
 //! The same SVG gives the same bytes.
 
 use super::PlotError;
-use super::font::{FAMILY, FONT_DATA};
+use super::font::{FAMILY, FONT_DATA, OBLIQUE_DATA};
 use pdf_writer::{Content, Finish, Name, Pdf, Rect, Ref, TextStr};
 use resvg::{tiny_skia, usvg};
 use std::collections::HashMap;
@@ -58,6 +58,7 @@ fn tree(svg: &str) -> Result<usvg::Tree, PlotError> {
     };
     let db = options.fontdb_mut();
     db.load_font_data(FONT_DATA.to_vec());
+    db.load_font_data(OBLIQUE_DATA.to_vec());
     db.set_sans_serif_family(FAMILY);
     usvg::Tree::from_str(svg, &options)
         .map_err(|e| PlotError::Export(format!("reading the SVG: {e}")))

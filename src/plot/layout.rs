@@ -12,6 +12,7 @@ use super::axes::Axis;
 use super::canvas::{Anchor, Canvas};
 use super::font::{DIGIT_HEIGHT, text_width};
 use super::legend::{self, LegendEntry, legend_of, marker_size};
+use super::marks::{Marks, Role};
 use super::series::{Kind, Panel, clip_polyline};
 use super::style::{GRID, MIN_FONT_PT, Rgb, Style};
 
@@ -52,6 +53,24 @@ impl Plot {
     /// Draws the plot at `style`; `metadata` goes into the SVG's
     /// `<metadata>`.
     pub fn render(&self, style: &Style, metadata: &str) -> String {
+        let (canvas, size) = self.draw(style);
+        canvas.finish(size, metadata)
+    }
+
+    /// What [`Plot::render`] puts where at `style`: text boxes, frames,
+    /// data and the legend's box (see `marks`).
+    pub fn marks(&self, style: &Style) -> Marks {
+        let (canvas, (w, h)) = self.draw(style);
+        let pt = super::style::PT_PER_MM;
+        Marks {
+            width: w * pt,
+            height: h * pt,
+            ..canvas.marks
+        }
+    }
+
+    /// The drawing and its printed size (mm).
+    fn draw(&self, style: &Style) -> (Canvas, (f64, f64)) {
         let f = style.font_pt;
         let width = style.width_pt();
         let pad = 0.5 * f;
@@ -65,6 +84,7 @@ impl Plot {
                 f * 1.15,
                 Anchor::Middle,
                 0.0,
+                Role::Title,
             );
             y += 1.6 * f;
         }
@@ -79,6 +99,7 @@ impl Plot {
                 f,
                 Anchor::Start,
                 0.0,
+                Role::Note,
             );
             y += 1.3 * f;
         }
@@ -164,7 +185,7 @@ impl Plot {
                 .sum::<f64>()
             + pad;
         let height_mm = style.height_mm.unwrap_or(height / super::style::PT_PER_MM);
-        canvas.finish((style.width_mm, height_mm), metadata)
+        (canvas, (style.width_mm, height_mm))
     }
 }
 
@@ -316,6 +337,7 @@ fn draw_panel(
                 t,
                 Anchor::Middle,
                 0.0,
+                Role::TickLabel,
             );
         }
     }
@@ -338,6 +360,7 @@ fn draw_panel(
                 t,
                 Anchor::End,
                 0.0,
+                Role::TickLabel,
             );
         }
     }
@@ -348,6 +371,7 @@ fn draw_panel(
         f,
         Anchor::Middle,
         0.0,
+        Role::AxisLabel,
     );
     let y_label_x = area.x - left_gutter + 0.95 * f;
     // A description longer than the panel is tall is set smaller, down to
@@ -360,6 +384,7 @@ fn draw_panel(
         (y_size * 100.0).floor() / 100.0,
         Anchor::Middle,
         -90.0,
+        Role::AxisLabel,
     );
     if let Some(title) = &panel.title {
         let lines = wrap(title, title_width, f);
@@ -371,6 +396,7 @@ fn draw_panel(
                 f,
                 Anchor::Start,
                 0.0,
+                Role::PanelTitle,
             );
         }
     }
@@ -386,7 +412,7 @@ fn draw_panel(
                 Anchor::End if px - w < area.x => Anchor::Start,
                 a => a,
             };
-            canvas.text(&note.text, (px, py), f, anchor, 0.0);
+            canvas.text(&note.text, (px, py), f, anchor, 0.0, Role::Annotation);
         }
     }
 }

@@ -52,14 +52,18 @@ pub(crate) mod export;
 mod font;
 mod layout;
 mod legend;
+pub mod marks;
 pub mod motion;
 pub mod optimize;
 pub mod performance;
+pub mod registry;
+pub mod review;
 pub mod scaling;
 mod series;
 pub mod signals;
 pub(crate) mod style;
 pub mod sweep;
+mod text;
 pub mod timeline;
 
 pub use axes::{Axis, superscript};
@@ -71,6 +75,7 @@ pub use layout::{Plot, fitted};
 pub use legend::LegendEntry;
 pub use series::{Kind, Panel, Series};
 pub use style::{Dash, Look, Marker, Preset, Rgb, Style};
+pub use text::visible;
 
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -97,6 +102,12 @@ impl Figure {
     pub fn svg(&self, style: &Style) -> String {
         self.plot
             .render(style, &format!("{PRODUCER}; figure {}", self.name))
+    }
+
+    /// What [`Figure::svg`] puts where at `style` (text boxes, frames,
+    /// data, the legend's box), for [`review::review`].
+    pub fn marks(&self, style: &Style) -> marks::Marks {
+        self.plot.marks(style)
     }
 
     /// The figure's bytes in `format` at `style` (`dpi` for PNG).

@@ -118,13 +118,13 @@ fn column_index(
     headers: &csv::StringRecord,
     name: &str,
     flag: &str,
-    path: &Path,
+    path: &str,
 ) -> Result<usize, PlotError> {
     headers.iter().position(|h| h == name).ok_or_else(|| {
         let names: Vec<&str> = headers.iter().collect();
         PlotError::Argument(format!(
             "{flag} {name}: no such column in {}; its columns are {}",
-            path.display(),
+            path,
             names.join(", ")
         ))
     })
@@ -132,6 +132,19 @@ fn column_index(
 
 /// Reads the sweep output at `path` and draws it as `spec` says.
 pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure, PlotError> {
+    check_references(spec)?;
+    let file = std::fs::File::open(path)
+        .map_err(|e| PlotError::Argument(format!("{}: {e}", path.display())))?;
+    sweep_figure_from(
+        std::io::BufReader::new(file),
+        &path.display().to_string(),
+        spec,
+        name,
+    )
+}
+
+/// Reference lines are finite, and positive on a log axis.
+fn check_references(spec: &SweepSpec) -> Result<(), PlotError> {
     for (log, flag, refs) in [
         (spec.log_x, "--ref-x", &spec.ref_x),
         (spec.log_y, "--ref-y", &spec.ref_y),
@@ -142,13 +155,22 @@ pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure,
             )));
         }
     }
-    let file = std::fs::File::open(path)
-        .map_err(|e| PlotError::Argument(format!("{}: {e}", path.display())))?;
+    Ok(())
+}
+
+/// Draws the sweep output read from `input` (named `path` in messages)
+/// as `spec` says.
+pub fn sweep_figure_from(
+    input: impl std::io::Read,
+    path: &str,
+    spec: &SweepSpec,
+    name: &str,
+) -> Result<Figure, PlotError> {
+    check_references(spec)?;
     let mut reader = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
-        .from_reader(std::io::BufReader::new(file));
-    let bad_csv =
-        |e: csv::Error| PlotError::Argument(format!("{}: not a sweep CSV: {e}", path.display()));
+        .from_reader(input);
+    let bad_csv = |e: csv::Error| PlotError::Argument(format!("{}: not a sweep CSV: {e}", path));
     let headers = reader.headers().map_err(bad_csv)?.clone();
     let ix = column_index(&headers, &spec.x, "--x", path)?;
     let iy = column_index(&headers, &spec.y, "--y", path)?;
@@ -184,15 +206,14 @@ pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure,
                 Ok(v) if v.is_finite() => Ok(Some(v)),
                 _ => Err(PlotError::Argument(format!(
                     "{}: data row {line}: column {column} = \"{text}\" is not a number",
-                    path.display()
+                    path
                 ))),
             }
         };
         let Some(x) = number(ix, &spec.x)? else {
             return Err(PlotError::Argument(format!(
                 "{}: data row {line}: column {} (--x) is empty",
-                path.display(),
-                spec.x
+                path, spec.x
             )));
         };
         let y = match number(iy, &spec.y)? {
@@ -212,8 +233,7 @@ pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure,
         if spec.log_x && x <= 0.0 {
             return Err(PlotError::Argument(format!(
                 "--log-x: {}: data row {line}: {} = {x} is not positive",
-                path.display(),
-                spec.x
+                path, spec.x
             )));
         }
         rows.push(Row {
@@ -224,10 +244,7 @@ pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure,
         });
     }
     if rows.is_empty() {
-        return Err(PlotError::Argument(format!(
-            "{}: no data rows",
-            path.display()
-        )));
+        return Err(PlotError::Argument(format!("{}: no data rows", path)));
     }
     draw(rows, spec, name, path)
 }
@@ -252,7 +269,7 @@ fn distinct<'a>(values: impl Iterator<Item = &'a str>) -> Vec<String> {
     seen
 }
 
-fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &Path) -> Result<Figure, PlotError> {
+fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &str) -> Result<Figure, PlotError> {
     let facets = distinct(rows.iter().map(|r| r.facet.as_str()));
     let series = distinct(rows.iter().map(|r| r.series.as_str()));
     let mut flags: Vec<Flag> = rows.iter().filter_map(|r| r.y.clone().err()).collect();
@@ -282,12 +299,7 @@ fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &Path) -> Result<Fig
     let bottom = y_axis.range.0;
     let mut csv = Csv::new(
         &[
-            &format!(
-                "Sweep plot of {}: {} against {}.",
-                path.display(),
-                spec.y,
-                spec.x
-            ),
+            &format!("Sweep plot of {}: {} against {}.", path, spec.y, spec.x),
             "status: ok, or why the row has no point (failed; its regime without a steady state, e.g. run-away; no value; off the log axis); such rows are drawn on the bottom edge.",
         ],
         &["facet", "series", "x", "y", "status"],
