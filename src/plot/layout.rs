@@ -3,13 +3,15 @@
 //!
 //! Contract: the figure is [`Style::width_mm`] wide; its height is
 //! [`Style::height_mm`] when given, otherwise what the panels need at the
-//! plot's aspect ratio. Gutters are measured with the font's metrics, so
+//! plot's aspect ratio (taller where a y-axis description at the smallest
+//! print size needs it). Gutters are measured with the font's metrics, so
 //! tick labels and axis descriptions never overlap the plotting area or
 //! each other's panels. Every text is set at [`Style::font_pt`] or
 //! [`Style::tick_pt`].
 
 use super::axes::Axis;
 use super::canvas::{Anchor, Canvas};
+use super::colorbar::{self, ColorBar};
 use super::font::{DIGIT_HEIGHT, text_width};
 use super::legend::{self, LegendEntry, legend_of, marker_size};
 use super::marks::{Marks, Role};
@@ -27,8 +29,12 @@ pub struct Plot {
     pub aspect: f64,
     /// Legend entries (by default those of the panels' labelled series).
     pub legend: Vec<LegendEntry>,
-    /// Lines of text under the legend (what the legend cannot say).
+    /// The caption's text (what the legend cannot say): not drawn, written
+    /// as `# caption:` lines at the head of the figure's CSV
+    /// ([`super::Figure::data`]).
     pub notes: Vec<String>,
+    /// The scale of a map's colours, drawn above the panels.
+    pub colorbar: Option<ColorBar>,
 }
 
 impl Plot {
@@ -41,10 +47,17 @@ impl Plot {
             aspect,
             legend,
             notes: Vec::new(),
+            colorbar: None,
         }
     }
 
-    /// The same plot with note lines under the legend.
+    /// The same plot with a colour bar above its panels.
+    pub fn with_colorbar(mut self, bar: ColorBar) -> Self {
+        self.colorbar = Some(bar);
+        self
+    }
+
+    /// The same plot with caption lines (written to the CSV, not drawn).
     pub fn with_notes(mut self, notes: Vec<String>) -> Self {
         self.notes = notes;
         self
@@ -92,16 +105,9 @@ impl Plot {
             legend::draw(&mut canvas, &self.legend, (pad, y), inner, style);
             y += legend::height(&self.legend, inner, style) + 0.2 * f;
         }
-        for line in self.notes.iter().flat_map(|n| wrap(n, TEXT_FIT * inner, f)) {
-            canvas.text(
-                &line,
-                (pad, y + DIGIT_HEIGHT * f + 0.1 * f),
-                f,
-                Anchor::Start,
-                0.0,
-                Role::Note,
-            );
-            y += 1.3 * f;
+        if let Some(bar) = &self.colorbar {
+            colorbar::draw(&mut canvas, bar, (pad, y + 0.2 * f), inner, style);
+            y += colorbar::height(style) + 0.4 * f;
         }
         let mut gutters: Vec<Gutter> = self.panels.iter().map(|p| Gutter::of(p, style)).collect();
         // The plot's columns, fewer when its panels would be narrower than
@@ -153,9 +159,17 @@ impl Plot {
         let fixed: f64 = (0..rows)
             .map(|r| row_max(r, |g| g.top) + row_max(r, |g| g.bottom))
             .sum();
+        // A panel is at least as tall as its y-axis description at the
+        // smallest print size, so that descriptions of panels one above
+        // the other never run into each other.
+        let y_label_min = self
+            .panels
+            .iter()
+            .map(|p| text_width(&p.y.label, MIN_FONT_PT.min(f)) / TEXT_FIT)
+            .fold(0.0, f64::max);
         let plot_h = match style.height_mm {
             Some(h) => ((h * super::style::PT_PER_MM - y - pad - fixed) / rows as f64).max(f),
-            None => plot_w * self.aspect,
+            None => (plot_w * self.aspect).max(y_label_min),
         };
         for (i, panel) in self.panels.iter().enumerate() {
             let (r, c) = (i / columns, i % columns);
@@ -433,7 +447,7 @@ fn fitting_ticks(axis: &Axis, fits: impl Fn(&[&str]) -> bool) -> Vec<super::axes
         let ticks = axis.clone().with_ticks(wanted).tick_marks();
         let labels = labelled(&ticks);
         let refs: Vec<&str> = labels.iter().map(String::as_str).collect();
-        if axis.log || wanted <= 2 || fits(&refs) {
+        if axis.log || axis.pi || wanted <= 2 || fits(&refs) {
             return ticks;
         }
         wanted -= 1;

@@ -16,6 +16,7 @@ use super::layout::fitted;
 use super::style::{Dash, GREY, Look, Marker, PALETTE};
 use super::{Axis, Cell, Csv, Figure, Panel, Plot, PlotError, Preset, Series};
 use crate::indicator::Indicator;
+use crate::symbol::symbol;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -43,7 +44,8 @@ pub struct SweepSpec {
 /// Regimes with a steady state (docs/interface.md, `regime`).
 const STEADY_REGIMES: [&str; 3] = ["stuck", "stick-slip", "slip-slip"];
 
-/// Units of the documented columns, for axis labels.
+/// Units of the documented columns the table of symbols does not name,
+/// for axis labels.
 fn unit(column: &str) -> Option<&'static str> {
     if let Ok(indicator) = column.parse::<Indicator>() {
         return Some(indicator.unit()).filter(|u| *u != "1");
@@ -60,10 +62,37 @@ fn unit(column: &str) -> Option<&'static str> {
     })
 }
 
+/// A column's name as words (another tool's column, not in the table of
+/// symbols): underscores become spaces.
+fn words(column: &str) -> String {
+    column.replace('_', " ")
+}
+
+/// The axis label of a column: description, symbol and unit from the
+/// table of symbols, or the column's name in words and its unit.
 fn axis_label(column: &str) -> String {
+    if let Some(s) = symbol(column) {
+        return s.label();
+    }
     match unit(column) {
-        Some(u) => format!("{column} ({u})"),
-        None => column.to_owned(),
+        Some(u) => format!("{} ({u})", words(column)),
+        None => words(column),
+    }
+}
+
+/// How a series or facet of `column` = `value` is named: "with" or
+/// "without" for a switch, the symbol (or the column in words) and the
+/// value otherwise.
+fn value_label(column: &str, value: &str) -> String {
+    let sym = symbol(column);
+    let what = sym.map_or_else(|| words(column), |s| s.description.to_owned());
+    match value {
+        "true" if !what.is_empty() => format!("with {what}"),
+        "false" if !what.is_empty() => format!("without {what}"),
+        _ => format!(
+            "{} = {value}",
+            sym.map_or_else(|| words(column), |s| s.quantity.to_owned())
+        ),
     }
 }
 
@@ -320,7 +349,7 @@ fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &str) -> Result<Figu
     let mut panels = Vec::new();
     let mut points_only = false;
     for facet in &facets {
-        let title = spec.facet.as_ref().map(|f| format!("{f} = {facet}"));
+        let title = spec.facet.as_ref().map(|f| value_label(f, facet));
         let mut panel = Panel::new(title.as_deref(), x_axis.clone(), y_axis.clone());
         for &ry in &spec.ref_y {
             panel.series.push(Series::hline(
@@ -347,8 +376,8 @@ fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &str) -> Result<Figu
             let repeated = pts.windows(2).any(|w| w[0].0 == w[1].0);
             points_only |= repeated;
             let label = match &spec.series {
-                Some(col) => format!("{col} = {s}"),
-                None => spec.y.clone(),
+                Some(col) => value_label(col, s),
+                None => symbol(&spec.y).map_or_else(|| words(&spec.y), |s| s.quantity.to_owned()),
             };
             let mut look = Look::nth(i);
             if (repeated || pts.len() <= 40) && look.marker == Marker::None {

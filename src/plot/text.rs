@@ -61,7 +61,7 @@ pub(crate) fn script_size(size: f64) -> f64 {
 /// The runs of `markup`.
 pub(crate) fn parse(markup: &str) -> Vec<Run> {
     let mut runs: Vec<Run> = Vec::new();
-    let mut push = |c: char, italic: bool, shift: Shift| match runs.last_mut() {
+    let push = |runs: &mut Vec<Run>, c: char, italic: bool, shift: Shift| match runs.last_mut() {
         Some(r) if r.italic == italic && r.shift == shift => r.text.push(c),
         _ => runs.push(Run {
             text: c.to_string(),
@@ -84,14 +84,20 @@ pub(crate) fn parse(markup: &str) -> Vec<Run> {
                     if s == '}' {
                         break;
                     }
-                    push(s, false, shift);
+                    push(&mut runs, s, false, shift);
                 }
             } else if let Some(s) = chars.next() {
-                push(s, false, shift);
+                push(&mut runs, s, false, shift);
             }
             continue;
         }
-        push(c, math && c.is_alphabetic(), Shift::Base);
+        // A combining mark (the hat of x̂) takes its letter's face.
+        let combining = ('\u{300}'..='\u{36f}').contains(&c);
+        let italic = match runs.last() {
+            Some(r) if combining => r.italic,
+            _ => math && c.is_alphabetic(),
+        };
+        push(&mut runs, c, italic, Shift::Base);
     }
     runs
 }
@@ -180,6 +186,8 @@ mod tests {
         assert_eq!(runs[2].text, " (m/s)");
         assert_eq!(visible("$p_{0.99}$"), "p0.99");
         assert_eq!(visible("raw_name"), "raw_name");
+        let hat = parse("$x̂_R$");
+        assert!(hat[0].italic && hat[0].text == "x\u{302}", "{hat:?}");
     }
 
     #[test]
