@@ -147,7 +147,8 @@ fn a_sweep_row_and_a_sweep_figure_show_every_indicator() {
                 n.descendants()
                     .filter(|d| d.is_text())
                     .filter_map(|d| d.text())
-                    .collect()
+                    .collect::<String>()
+                    .replace('\u{a0}', " ")
             })
             .collect();
         assert!(

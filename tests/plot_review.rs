@@ -40,7 +40,7 @@ fn every_figure_in_every_preset_passes_the_reviewers_checks() {
 #[test]
 fn the_marks_describe_the_svg_that_is_written() {
     // The texts the reviewer reads are the SVG's texts, one for one.
-    for entry in &ALL[..3] {
+    for entry in ALL {
         let preset = Preset::SingleColumn;
         let figure = entry.figure(preset).unwrap();
         let svg = figure.svg(&preset.style());
@@ -59,10 +59,16 @@ fn the_marks_describe_the_svg_that_is_written() {
                 n.descendants()
                     .filter(|d| d.is_text())
                     .filter_map(|d| d.text())
-                    .collect()
+                    .collect::<String>()
+                    // Edge spaces of a rich text's runs are no-break spaces.
+                    .replace('\u{a0}', " ")
             })
             .collect();
-        let marked: Vec<String> = marks.texts.iter().map(|t| t.text.clone()).collect();
+        let marked: Vec<String> = marks
+            .texts
+            .iter()
+            .map(|t| t.text.replace('\u{a0}', " "))
+            .collect();
         assert_eq!(shown, marked, "{}", entry.name);
     }
 }

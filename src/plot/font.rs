@@ -84,6 +84,8 @@ mod tests {
     fn digits_have_the_fonts_advance() {
         assert!((text_width("0000", 10.0) - 4.0 * 6.362).abs() < 0.01);
         assert!(text_width("κ", 10.0) > 0.0);
+        // Rich text writes edge spaces as no-break spaces: same advance.
+        assert_eq!(text_width("\u{a0}", 10.0), text_width(" ", 10.0));
     }
 
     #[test]

@@ -257,7 +257,7 @@ pub fn motion(
         let samples = sample(m, &signal, period);
         for s in &samples {
             csv.row(&[
-                Cell::S(&m.label),
+                Cell::S(&crate::plot::visible(&m.label)),
                 Cell::S("sample"),
                 Cell::I(s.period as i64),
                 Cell::S(s.mode.name()),
@@ -281,7 +281,7 @@ pub fn motion(
             .collect();
         for (t, kind, v) in &events {
             csv.row(&[
-                Cell::S(&m.label),
+                Cell::S(&crate::plot::visible(&m.label)),
                 Cell::S("event"),
                 Cell::I(0),
                 Cell::S(kind.name()),

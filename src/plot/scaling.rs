@@ -186,7 +186,7 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
         let shape = &SHAPES[s];
         let startup = p.map(|p| p as f64 * period);
         csv.row(&[
-            Cell::S(shape.label.replace(',', ";").as_str()),
+            Cell::S(crate::plot::visible(shape.label).replace(',', ";").as_str()),
             Cell::I(shape.n as i64),
             Cell::F(shape.kappa),
             Cell::S(if shape.sigma { "true" } else { "false" }),
@@ -229,7 +229,7 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
         let mut line = format!(
             "panel {} fitted log-log slopes ({}):",
             &title[..3],
-            SHAPES.map(|s| crate::plot::visible(s.label)).join(", ")
+            SHAPES.map(|s| crate::plot::visible(s.label)).join("; ")
         );
         for (s, shape) in SHAPES.iter().enumerate() {
             let slope = loglog_slope(&data[s][q]);

@@ -14,6 +14,8 @@
 //! own size, and shifted by a fixed fraction of the text's size; widths
 //! ([`runs_width`]) and ink extents ([`runs_extent`]) are measured from
 //! the shipped fonts' metrics at the size and face each run is set in.
+//! In the SVG, spaces at the edges of a run are written between the
+//! `<tspan>`s at the text's size, where renderers keep them.
 
 use super::canvas::escape;
 use super::font;
@@ -138,6 +140,15 @@ pub(crate) fn runs_extent(runs: &[Run], size: f64) -> (f64, f64) {
         })
 }
 
+/// `n` spaces that XML keeps: one plain space, then no-break spaces (the
+/// same advance in the shipped font).
+fn spaces(n: usize) -> String {
+    match n {
+        0 => String::new(),
+        n => format!(" {}", "\u{a0}".repeat(n - 1)),
+    }
+}
+
 /// The SVG content of a `<text>` element of size `size` showing `markup`:
 /// plain escaped text when it has no markup, otherwise `<tspan>`s with the
 /// italic face, the script size and `dy` shifts back to the baseline.
@@ -152,23 +163,37 @@ pub(crate) fn svg_content(markup: &str, size: f64) -> String {
     for r in &runs {
         let target = r.shift.offset(size);
         let dy = target - offset;
-        offset = target;
         let plain = !r.italic && r.shift == Shift::Base && dy.abs() < 1e-9;
         if plain {
             out.push_str(&escape(&r.text));
             continue;
         }
-        out.push_str("<tspan");
-        if r.italic {
-            out.push_str(r#" font-style="italic""#);
+        // Spaces at a run's edges are written between the `<tspan>`s, at
+        // the text's own size (as they are measured): some renderers drop
+        // a space at the edge of a shifted `<tspan>`.
+        let core = r.text.trim_matches(' ');
+        let lead = r.text.len() - r.text.trim_start_matches(' ').len();
+        let trail = if core.is_empty() {
+            0
+        } else {
+            r.text.len() - r.text.trim_end_matches(' ').len()
+        };
+        out.push_str(&spaces(lead));
+        if !core.is_empty() {
+            offset = target;
+            out.push_str("<tspan");
+            if r.italic {
+                out.push_str(r#" font-style="italic""#);
+            }
+            if r.shift != Shift::Base {
+                let _ = write!(out, r#" font-size="{}""#, num(run_size(r, size)));
+            }
+            if dy.abs() >= 1e-9 {
+                let _ = write!(out, r#" dy="{}""#, num(dy));
+            }
+            let _ = write!(out, ">{}</tspan>", escape(core));
         }
-        if r.shift != Shift::Base {
-            let _ = write!(out, r#" font-size="{}""#, num(run_size(r, size)));
-        }
-        if dy.abs() >= 1e-9 {
-            let _ = write!(out, r#" dy="{}""#, num(dy));
-        }
-        let _ = write!(out, ">{}</tspan>", escape(&r.text));
+        out.push_str(&spaces(trail));
     }
     out
 }
@@ -209,6 +234,9 @@ mod tests {
         let s = svg_content("$F_c$ (N)", 8.0);
         assert!(s.contains(r#"<tspan font-style="italic">F</tspan>"#), "{s}");
         assert!(s.contains(r#"dy="1.76">c</tspan>"#), "{s}");
-        assert!(s.contains(r#"<tspan dy="-1.76"> (N)</tspan>"#), "{s}");
+        assert!(
+            s.contains(r#"c</tspan> <tspan dy="-1.76">(N)</tspan>"#),
+            "{s}"
+        );
     }
 }
