@@ -433,7 +433,7 @@ fn draw_panel(
 
 /// The axis's ticks with the most labels, up to its wish, that `fits`
 /// (given the labels); at least two labels on a linear axis. A
-/// logarithmic axis keeps its ticks.
+/// logarithmic or phase axis keeps its ticks and labels every k-th.
 fn fitting_ticks(axis: &Axis, fits: impl Fn(&[&str]) -> bool) -> Vec<super::axes::Tick> {
     let labelled = |ticks: &[super::axes::Tick]| -> Vec<String> {
         ticks
@@ -442,12 +442,40 @@ fn fitting_ticks(axis: &Axis, fits: impl Fn(&[&str]) -> bool) -> Vec<super::axes
             .map(|k| k.label.clone())
             .collect()
     };
+    if axis.log || axis.pi {
+        // Fixed tick values: keep every k-th label, the smallest k whose
+        // labels fit (the others stay as unlabelled ticks).
+        let ticks = axis.tick_marks();
+        let count = labelled(&ticks).len();
+        for every in 1..=count.max(1) {
+            let mut k = 0;
+            let thinned: Vec<super::axes::Tick> = ticks
+                .iter()
+                .map(|t| {
+                    let mut t = t.clone();
+                    if !t.label.is_empty() {
+                        if k % every != 0 {
+                            t.label.clear();
+                        }
+                        k += 1;
+                    }
+                    t
+                })
+                .collect();
+            let labels = labelled(&thinned);
+            let refs: Vec<&str> = labels.iter().map(String::as_str).collect();
+            if refs.len() <= 2 || fits(&refs) {
+                return thinned;
+            }
+        }
+        return ticks;
+    }
     let mut wanted = axis.ticks;
     loop {
         let ticks = axis.clone().with_ticks(wanted).tick_marks();
         let labels = labelled(&ticks);
         let refs: Vec<&str> = labels.iter().map(String::as_str).collect();
-        if axis.log || axis.pi || wanted <= 2 || fits(&refs) {
+        if wanted <= 2 || fits(&refs) {
             return ticks;
         }
         wanted -= 1;

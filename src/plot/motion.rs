@@ -145,9 +145,9 @@ fn record(
                 };
             }
             let label = if a == b {
-                format!("p = {a}")
+                format!("$p$ = {a}")
             } else {
-                format!("p = {a} … {b}")
+                format!("$p$ = {a} … {b}")
             };
             Ok(Motion {
                 label,
@@ -310,6 +310,12 @@ pub fn motion(
                         t_axis(),
                         Axis::linear("velocity $v$ (m/s)", padded(lo, hi, 0.06)),
                     );
+                    p.series
+                        .push(curve("rod", &samples, |s| s.v_rod, rod_look()));
+                    p.series
+                        .push(curve("slider", &samples, |s| s.v_slider, slider_look()));
+                    // Drawn over the curves, so that it shows where the
+                    // slider's velocity crosses it.
                     if m.label.starts_with("steady")
                         && let Some((_, v_inf)) = steady
                     {
@@ -320,10 +326,6 @@ pub fn motion(
                             Look::reference(),
                         ));
                     }
-                    p.series
-                        .push(curve("rod", &samples, |s| s.v_rod, rod_look()));
-                    p.series
-                        .push(curve("slider", &samples, |s| s.v_slider, slider_look()));
                     for (kind, look) in event_looks() {
                         let pts: Vec<(f64, f64)> = events
                             .iter()
