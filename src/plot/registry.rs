@@ -126,9 +126,10 @@ impl Entry {
 /// Figure 8's scene (the paper's caption): n = 2, no sigma factors,
 /// sqrt(kappa) = 1, stroke 25 µm.
 fn figure8_scene() -> Scene {
-    let mut s = Scene::default();
-    s.signal = SignalSpec::fourier(25e-6, 1.0, 2, false);
-    s
+    Scene {
+        signal: SignalSpec::fourier(25e-6, 1.0, 2, false),
+        ..Scene::default()
+    }
 }
 
 /// The section-7 grid (`examples/sweeps/section7.toml`): levels
@@ -140,9 +141,11 @@ fn grid() -> Result<&'static [GridPoint], PlotError> {
         for level in [3.0, 6.0, 9.0, 12.0, 15.0] {
             for n in 2..=8usize {
                 for sigma in [false, true] {
-                    let mut scene = Scene::default();
                     let sqrt_kappa = level / n as f64;
-                    scene.signal = SignalSpec::fourier(25e-6, sqrt_kappa * sqrt_kappa, n, sigma);
+                    let scene = Scene {
+                        signal: SignalSpec::fourier(25e-6, sqrt_kappa * sqrt_kappa, n, sigma),
+                        ..Scene::default()
+                    };
                     let report = crate::simulation::run(&scene).map_err(|e| e.to_string())?;
                     points.push(GridPoint::from_report(level, n, sigma, &report));
                 }

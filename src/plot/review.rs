@@ -8,7 +8,7 @@
 //!   the stroke of a panel's frame ([`Check::TextOverlap`]);
 //! * legend whose box is crossed by a data line or covers a data marker
 //!   ([`Check::LegendOverData`]);
-//! * text with characters set below [`MIN_FONT_PT`] at the printed size
+//! * text with characters set below 7 pt (`MIN_FONT_PT`) at the printed size
 //!   ([`Check::TextTooSmall`]);
 //! * legend taller than [`MAX_LEGEND_SHARE`] of the figure
 //!   ([`Check::LegendTooTall`]);
