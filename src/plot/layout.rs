@@ -311,11 +311,32 @@ fn draw_panel(
     let axis_pt = 0.6 * style.line_pt.min(1.5);
     // As many tick labels as fit side by side (x) or one above the other
     // (y) at this size.
-    let x_ticks = fitting_ticks(&panel.x, |labels| {
-        let widest = labels.iter().map(|l| text_width(l, t)).fold(0.0, f64::max);
-        (widest + 0.8 * f) * labels.len() as f64 <= area.w
-    });
-    let y_ticks = fitting_ticks(&panel.y, |labels| 1.6 * t * labels.len() as f64 <= area.h);
+    // Neighbouring labels of a log or phase axis at least this far apart
+    // (pt) beyond their half widths (x) or their height (y).
+    let x_apart = |shown: &[&super::axes::Tick]| {
+        shown.windows(2).all(|w| {
+            let d = area.w * (panel.x.fraction(w[1].value) - panel.x.fraction(w[0].value)).abs();
+            d >= (text_width(&w[0].label, t) + text_width(&w[1].label, t)) / 2.0 + 0.4 * f
+        })
+    };
+    let y_apart = |shown: &[&super::axes::Tick]| {
+        shown.windows(2).all(|w| {
+            area.h * (panel.y.fraction(w[1].value) - panel.y.fraction(w[0].value)).abs() >= 1.2 * t
+        })
+    };
+    let x_ticks = fitting_ticks(
+        &panel.x,
+        |labels| {
+            let widest = labels.iter().map(|l| text_width(l, t)).fold(0.0, f64::max);
+            (widest + 0.8 * f) * labels.len() as f64 <= area.w
+        },
+        x_apart,
+    );
+    let y_ticks = fitting_ticks(
+        &panel.y,
+        |labels| 1.6 * t * labels.len() as f64 <= area.h,
+        y_apart,
+    );
     // Grid lines at labelled ticks, under the data.
     let inside = |v: f64| (-1e-9..=1.0 + 1e-9).contains(&v);
     for k in x_ticks.iter().filter(|k| !k.label.is_empty()) {
@@ -433,8 +454,14 @@ fn draw_panel(
 
 /// The axis's ticks with the most labels, up to its wish, that `fits`
 /// (given the labels); at least two labels on a linear axis. A
-/// logarithmic or phase axis keeps its ticks and labels every k-th.
-fn fitting_ticks(axis: &Axis, fits: impl Fn(&[&str]) -> bool) -> Vec<super::axes::Tick> {
+/// logarithmic or phase axis keeps its ticks and labels fewer of them
+/// until `apart` (given the labelled ticks) holds: all of them, then (log)
+/// only the powers of ten, then every k-th of those.
+fn fitting_ticks(
+    axis: &Axis,
+    fits: impl Fn(&[&str]) -> bool,
+    apart: impl Fn(&[&super::axes::Tick]) -> bool,
+) -> Vec<super::axes::Tick> {
     let labelled = |ticks: &[super::axes::Tick]| -> Vec<String> {
         ticks
             .iter()
@@ -443,28 +470,41 @@ fn fitting_ticks(axis: &Axis, fits: impl Fn(&[&str]) -> bool) -> Vec<super::axes
             .collect()
     };
     if axis.log || axis.pi {
-        // Fixed tick values: keep every k-th label, the smallest k whose
-        // labels fit (the others stay as unlabelled ticks).
         let ticks = axis.tick_marks();
-        let count = labelled(&ticks).len();
-        for every in 1..=count.max(1) {
+        let decade = |v: f64| {
+            let m = v / 10f64.powf(v.log10().floor());
+            (m - 1.0).abs() < 1e-9
+        };
+        let keep = |t: &super::axes::Tick, powers: bool| {
+            !t.label.is_empty() && (!powers || decade(t.value))
+        };
+        let count = ticks.iter().filter(|t| !t.label.is_empty()).count().max(1);
+        let mut candidates: Vec<(bool, usize)> = vec![(false, 1)];
+        if axis.log {
+            candidates.extend((1..=count).map(|k| (true, k)));
+        } else {
+            candidates.extend((2..=count).map(|k| (false, k)));
+        }
+        for (powers, every) in candidates {
             let mut k = 0;
             let thinned: Vec<super::axes::Tick> = ticks
                 .iter()
                 .map(|t| {
                     let mut t = t.clone();
-                    if !t.label.is_empty() {
+                    if keep(&t, powers) {
                         if k % every != 0 {
                             t.label.clear();
                         }
                         k += 1;
+                    } else {
+                        t.label.clear();
                     }
                     t
                 })
                 .collect();
-            let labels = labelled(&thinned);
-            let refs: Vec<&str> = labels.iter().map(String::as_str).collect();
-            if refs.len() <= 2 || fits(&refs) {
+            let shown: Vec<&super::axes::Tick> =
+                thinned.iter().filter(|t| !t.label.is_empty()).collect();
+            if shown.len() <= 2 || apart(&shown) {
                 return thinned;
             }
         }
