@@ -1,13 +1,15 @@
 //! The performance indicators (docs/model.md sections 3 and 4): one table
-//! that every output reads. [`Indicator::ALL`] fixes the order; the name,
-//! unit and meaning are here; the value and its error estimate come from
+//! that every output reads. [`Indicator::ALL`] fixes the order; the name and
+//! meaning are here, the symbol and unit in the table of symbols
+//! (`src/symbol.rs`); the value and its error estimate come from
 //! `RunReport::value` and `RunReport::error` (`src/simulation.rs`). The
 //! text summary, `run --json`, `check`, sweep columns and sweep figures are
 //! loops over [`Indicator::ALL`], so they cannot disagree.
 //!
 //! ## Adding an indicator
-//! 1. Add the variant here, in [`Indicator::ALL`], and its arms in
-//!    [`Indicator::name`], [`Indicator::unit`] and [`Indicator::meaning`]
+//! 1. Add the variant here, in [`Indicator::ALL`], its arms in
+//!    [`Indicator::name`] and [`Indicator::meaning`], and its symbol, unit
+//!    and description in the table of symbols (`src/symbol.rs`)
 //!    (and [`Indicator::unavailable_because`] if some scenes cannot have
 //!    it).
 //! 2. Compute it: a field of the steady-state indicators or of the
@@ -21,6 +23,7 @@
 
 use crate::power::ActuatorParams;
 use crate::signal::SignalSpec;
+use crate::symbol::{Symbol, symbol};
 use std::fmt;
 use std::str::FromStr;
 use thiserror::Error;
@@ -77,16 +80,16 @@ impl Indicator {
         }
     }
 
-    /// The SI unit (`1` for a ratio): sweep columns and axis labels.
+    /// The indicator's entry in the table of symbols (`src/symbol.rs`):
+    /// its symbol in figures, its unit and description.
+    pub fn symbol(self) -> &'static Symbol {
+        symbol(self.name()).expect("every indicator is in the table of symbols")
+    }
+
+    /// The SI unit (`1` for a ratio): sweep columns and axis labels, from
+    /// the table of symbols.
     pub fn unit(self) -> &'static str {
-        match self {
-            Indicator::VInf => "m/s",
-            Indicator::StartupTime => "s",
-            Indicator::Smoothness | Indicator::StictionFraction => "1",
-            Indicator::Durability => "1/N",
-            Indicator::FrictionEnergy => "J",
-            Indicator::VelocityPerPower => "m/(s VA)",
-        }
+        self.symbol().unit
     }
 
     /// The unit as the text summary and `check` print it: `friction_energy`

@@ -551,11 +551,15 @@ fn outputs_never_overwrite_the_input_or_each_other() {
             .starts_with("load,extra_acceleration,regime,v_inf")
     );
     assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
-    assert_eq!(
-        std::fs::read_to_string(&csv).unwrap(),
-        t,
-        "the figure's data is the table"
+    // The figure's data is the table under the caption's line (what the
+    // figure does not draw: no-load speed, stall force, ...).
+    let data = std::fs::read_to_string(&csv).unwrap();
+    let (caption, rest) = data.split_once('\n').unwrap();
+    assert!(
+        caption.starts_with("# caption: ") && caption.contains("stall force"),
+        "{caption}"
     );
+    assert_eq!(rest, t, "the figure's data is the table");
     assert_eq!(std::fs::read_to_string(&scene_path).unwrap(), text);
 }
 

@@ -132,14 +132,28 @@ fn a_sweep_row_and_a_sweep_figure_show_every_indicator() {
             s(&svg),
         ]));
         let figure = fs::read_to_string(&svg).expect("the figure was written");
-        let label = match i.unit() {
-            "1" => i.name().to_owned(),
-            unit => format!("{} ({unit})", i.name()),
-        };
-        let escaped = label.replace('&', "&amp;");
+        // The axis label is the indicator's entry in the table of symbols:
+        // description, symbol (typeset) and unit.
+        let label = stickslip::plot::visible(&i.symbol().label());
+        assert!(label.contains(i.symbol().description));
+        if i.unit() != "1" {
+            assert!(label.ends_with(&format!("({})", i.unit())), "{label}");
+        }
+        let doc = roxmltree::Document::parse(&figure).expect("the SVG parses");
+        let shown: Vec<String> = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("text"))
+            .map(|n| {
+                n.descendants()
+                    .filter(|d| d.is_text())
+                    .filter_map(|d| d.text())
+                    .collect::<String>()
+                    .replace('\u{a0}', " ")
+            })
+            .collect();
         assert!(
-            figure.contains(&format!(">{escaped}<")),
-            "the axis label of {i} is {label}"
+            shown.contains(&label),
+            "the axis label of {i} is {label}; the figure shows {shown:?}"
         );
     }
 }

@@ -24,6 +24,9 @@ pub struct Axis {
     /// Whole numbers only (periods, harmonic numbers): no tick between
     /// two integers.
     pub integer: bool,
+    /// A phase in radians: ticks at multiples of π/2, labelled `π/2`,
+    /// `π`, `3π/2`, `2π`.
+    pub pi: bool,
 }
 
 /// A tick: its value and label (empty for a minor tick).
@@ -45,6 +48,7 @@ impl Axis {
             scale: 1.0,
             ticks: 5,
             integer: false,
+            pi: false,
         }
     }
 
@@ -66,6 +70,12 @@ impl Axis {
     /// The same axis with ticks at whole numbers only.
     pub fn integers(mut self) -> Self {
         self.integer = true;
+        self
+    }
+
+    /// The same axis with ticks at multiples of π/2 (a phase in radians).
+    pub fn in_pi(mut self) -> Self {
+        self.pi = true;
         self
     }
 
@@ -96,6 +106,8 @@ impl Axis {
     pub fn tick_marks(&self) -> Vec<Tick> {
         if self.log {
             log_ticks(self.range)
+        } else if self.pi {
+            pi_ticks(self.range)
         } else {
             linear_ticks(self.range, self.ticks, self.integer)
         }
@@ -142,6 +154,35 @@ fn linear_ticks((lo, hi): (f64, f64), wanted: usize, integer: bool) -> Vec<Tick>
             Tick {
                 value: v,
                 label: tick_label(v, step),
+            }
+        })
+        .collect()
+}
+
+/// Ticks at multiples of π/2, labelled in π (minor ticks at π/4).
+fn pi_ticks((lo, hi): (f64, f64)) -> Vec<Tick> {
+    let quarter = std::f64::consts::FRAC_PI_4;
+    let first = (lo / quarter - 1e-9).ceil() as i64;
+    let last = (hi / quarter + 1e-9).floor() as i64;
+    (first..=last)
+        .map(|k| {
+            let label = if k % 2 != 0 {
+                String::new()
+            } else {
+                // k / 2 halves of π, in lowest terms.
+                let h = k / 2;
+                let sign = if h < 0 { "−" } else { "" };
+                match h.abs() {
+                    0 => "0".to_owned(),
+                    1 => format!("{sign}π/2"),
+                    2 => format!("{sign}π"),
+                    m if m % 2 == 0 => format!("{sign}{}π", m / 2),
+                    m => format!("{sign}{m}π/2"),
+                }
+            };
+            Tick {
+                value: k as f64 * quarter,
+                label,
             }
         })
         .collect()
@@ -281,6 +322,13 @@ mod tests {
             labels(&a.tick_marks()),
             ["1", "2", "5", "10", "20", "50", "100"]
         );
+    }
+
+    #[test]
+    fn phase_ticks_are_multiples_of_pi() {
+        let a = Axis::linear("ψ", (0.0, std::f64::consts::TAU)).in_pi();
+        assert_eq!(labels(&a.tick_marks()), ["0", "π/2", "π", "3π/2", "2π"]);
+        assert_eq!(a.tick_marks().len(), 9);
     }
 
     #[test]

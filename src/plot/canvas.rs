@@ -8,7 +8,9 @@
 //! the background); markers are filled or stroked in the series' colour.
 
 use super::font::FAMILY;
+use super::marks::{Bounds, Marks, Role, TextMark};
 use super::style::{Dash, Look, Marker, Rgb};
+use super::text;
 use std::fmt::Write as _;
 
 /// Horizontal anchor of a text.
@@ -52,15 +54,36 @@ pub(crate) fn escape(text: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// An SVG document being written.
+/// An SVG document being written, and the marks of what it holds.
 #[derive(Default)]
 pub(crate) struct Canvas {
     body: String,
+    /// What was drawn where (see `marks`).
+    pub(crate) marks: Marks,
+    /// Inside a series' group: lines and markers are data.
+    in_series: bool,
+    /// Drawing the legend: everything drawn belongs to its box.
+    in_legend: bool,
 }
 
 impl Canvas {
+    /// Starts (`true`) or ends (`false`) the legend: what is drawn in
+    /// between makes up the legend's box.
+    pub(crate) fn legend_mode(&mut self, on: bool) {
+        self.in_legend = on;
+    }
+
+    fn record(&mut self, b: Bounds) -> bool {
+        if self.in_legend {
+            self.marks.legend = Some(self.marks.legend.map_or(b, |l| l.union(b)));
+            return false;
+        }
+        self.in_series
+    }
+
     /// Opens a group for one series; [`Canvas::close`] ends it.
     pub(crate) fn open_series(&mut self, label: &str, look: &Look, kind: &str) {
+        self.in_series = true;
         let _ = writeln!(
             self.body,
             r#"<g class="series" data-kind="{kind}" data-label="{}" data-color="{}" data-dash="{}" data-marker="{}">"#,
@@ -73,6 +96,7 @@ impl Canvas {
 
     /// Closes a group.
     pub(crate) fn close(&mut self) {
+        self.in_series = false;
         self.body.push_str("</g>\n");
     }
 
@@ -96,6 +120,18 @@ impl Canvas {
         if points.len() < 2 || dash == Dash::NoLine {
             return;
         }
+        let (lo, hi) = super::min_max(points.iter().map(|p| p.0));
+        let (top, bottom) = super::min_max(points.iter().map(|p| p.1));
+        let h = width / 2.0;
+        let b = Bounds {
+            x0: lo - h,
+            y0: top - h,
+            x1: hi + h,
+            y1: bottom + h,
+        };
+        if self.record(b) {
+            self.marks.lines.push((points.to_vec(), width));
+        }
         let attrs = self.stroke_attrs(color, width, dash);
         self.body.push_str("<path d=\"");
         for (i, (x, y)) in points.iter().enumerate() {
@@ -112,6 +148,15 @@ impl Canvas {
 
     /// An outlined rectangle (no fill).
     pub(crate) fn frame(&mut self, x: f64, y: f64, w: f64, h: f64, color: Rgb, width: f64) {
+        let b = Bounds {
+            x0: x,
+            y0: y,
+            x1: x + w,
+            y1: y + h,
+        };
+        if !self.in_legend {
+            self.marks.frames.push((b, width));
+        }
         let _ = writeln!(
             self.body,
             r#"<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="{color}" stroke-width="{}"/>"#,
@@ -129,6 +174,12 @@ impl Canvas {
         if w <= 0.0 || h <= 0.0 {
             return;
         }
+        self.record(Bounds {
+            x0: x,
+            y0: y,
+            x1: x + w,
+            y1: y + h,
+        });
         let _ = writeln!(
             self.body,
             r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{color}" shape-rendering="crispEdges"/>"#,
@@ -142,6 +193,21 @@ impl Canvas {
     /// A marker of diameter `size` (pt) centred on `(x, y)`.
     pub(crate) fn marker(&mut self, marker: Marker, (x, y): (f64, f64), size: f64, color: Rgb) {
         let r = size / 2.0;
+        if marker != Marker::None
+            && self.record(Bounds {
+                x0: x - r,
+                y0: y - r,
+                x1: x + r,
+                y1: y + r,
+            })
+        {
+            self.marks.markers.push(Bounds {
+                x0: x - r,
+                y0: y - r,
+                x1: x + r,
+                y1: y + r,
+            });
+        }
         let fill = format!(r#"fill="{color}""#);
         let stroke = format!(
             r#"fill="none" stroke="{color}" stroke-width="{}""#,
@@ -209,8 +275,9 @@ impl Canvas {
         self.body.push('\n');
     }
 
-    /// A text whose baseline starts (or ends, or is centred, by `anchor`)
-    /// at `(x, y)`, rotated by `rotate` degrees about that point.
+    /// A text (with the quantity markup of `text`) whose baseline starts
+    /// (or ends, or is centred, by `anchor`) at `(x, y)`, rotated by
+    /// `rotate` degrees about that point; `role` says what it is for.
     pub(crate) fn text(
         &mut self,
         text: &str,
@@ -218,7 +285,12 @@ impl Canvas {
         size: f64,
         anchor: Anchor,
         rotate: f64,
+        role: Role,
     ) {
+        if text::visible(text).trim().is_empty() {
+            return;
+        }
+        self.record_text(text, (x, y), size, anchor, rotate, role);
         let transform = if rotate == 0.0 {
             String::new()
         } else {
@@ -236,8 +308,50 @@ impl Canvas {
             num(y),
             num(size),
             anchor.name(),
-            escape(text)
+            text::svg_content(text, size)
         );
+    }
+
+    fn record_text(
+        &mut self,
+        markup: &str,
+        (x, y): (f64, f64),
+        size: f64,
+        anchor: Anchor,
+        rotate: f64,
+        role: Role,
+    ) {
+        let runs = text::parse(markup);
+        let w = text::runs_width(&runs, size);
+        let (top, bottom) = text::runs_extent(&runs, size);
+        let start = match anchor {
+            Anchor::Start => 0.0,
+            Anchor::Middle => -w / 2.0,
+            Anchor::End => -w,
+        };
+        let (sin, cos) = rotate.to_radians().sin_cos();
+        let corners = [
+            (start, top),
+            (start + w, top),
+            (start, bottom),
+            (start + w, bottom),
+        ]
+        .map(|(dx, dy)| (x + dx * cos - dy * sin, y + dx * sin + dy * cos));
+        let (x0, x1) = super::min_max(corners.iter().map(|c| c.0));
+        let (y0, y1) = super::min_max(corners.iter().map(|c| c.1));
+        let bounds = Bounds { x0, y0, x1, y1 };
+        let smallest_pt = runs
+            .iter()
+            .filter(|r| !r.text.trim().is_empty())
+            .map(|r| text::run_size(r, size))
+            .fold(f64::INFINITY, f64::min);
+        self.record(bounds);
+        self.marks.texts.push(TextMark {
+            text: text::visible(markup),
+            role,
+            bounds,
+            smallest_pt,
+        });
     }
 
     /// The finished document: `width_mm` x `height_mm` printed, in points

@@ -61,8 +61,8 @@ pub fn figure(c: &Characteristic, scene: &Scene, name: &str) -> Result<Figure, P
     }
     let m = c.slider_mass;
     let x_label = match c.axis {
-        LoadAxis::Force => "load force F (N)",
-        LoadAxis::Incline => "incline angle θ (°)",
+        LoadAxis::Force => "load force $F$ (N)",
+        LoadAxis::Incline => "incline angle $θ$ (°)",
     };
     let x_of = |load: f64| c.axis.parameter(load, m);
     let v_of = |p: &&characteristic::Point| p.evaluation.v_inf.unwrap_or(0.0);
@@ -74,11 +74,11 @@ pub fn figure(c: &Characteristic, scene: &Scene, name: &str) -> Result<Figure, P
     let mut a = Panel::new(
         Some("(a) steady-state velocity"),
         Axis::linear(x_label, x_range),
-        Axis::linear("v∞ (m/s)", y_range),
+        Axis::linear(&super::sym("v_inf").short_label(), y_range),
     );
     if let Some(band) = &c.held_band {
         a.series.push(Series::bands(
-            Some("held still (v∞ = 0)"),
+            Some("held still ($v_∞$ = 0)"),
             vec![[(x_of(band.lower), y_range.0), (x_of(band.upper), y_range.1)]],
             Look::line(super::style::BAND, Dash::Solid),
         ));
@@ -97,7 +97,7 @@ pub fn figure(c: &Characteristic, scene: &Scene, name: &str) -> Result<Figure, P
             .collect();
         if !lines.is_empty() {
             a.series.push(Series {
-                label: Some("holding force at rest ±μ₀F_c".to_owned()),
+                label: Some("holding force at rest ±$µ_0F_c$".to_owned()),
                 pieces: lines,
                 look: Look::reference(),
                 kind: super::Kind::Curve,
@@ -114,7 +114,7 @@ pub fn figure(c: &Characteristic, scene: &Scene, name: &str) -> Result<Figure, P
     }
     pieces.retain(|piece| !piece.is_empty());
     a.series.push(Series {
-        label: Some("v∞".to_owned()),
+        label: Some(super::sym("v_inf").quantity.to_owned()),
         pieces,
         look: Look::nth(0).weighted(1.2),
         kind: super::Kind::Curve,
@@ -173,20 +173,23 @@ pub fn figure(c: &Characteristic, scene: &Scene, name: &str) -> Result<Figure, P
         let top = best.power.max(min_max(pts.iter().map(|p| p.1)).1);
         let x_axis = Axis::linear(x_label, padded(x0, x1, 0.03));
         let mut b = Panel::new(
-            Some("(b) output power F·v∞"),
+            Some("(b) output power $Fv_∞$"),
             x_axis.clone(),
-            Axis::linear("F·v∞ (mW)", (0.0, top * 1.12e3)).scaled(1e3),
+            Axis::linear("$Fv_∞$ (mW)", (0.0, top * 1.12e3)).scaled(1e3),
         );
         let recommended = x_of(c.stall.force / 2.0);
         if recommended.is_finite() {
             b.series.push(Series::line(
-                Some("recommended load F_stall/2"),
+                Some("recommended load $F_{stall}$/2"),
                 vec![(recommended, 0.0), (recommended, top * 1.12)],
                 Look::line(GREY, Dash::Dotted),
             ));
         }
-        b.series
-            .push(Series::line(Some("F·v∞"), pts, Look::nth(1).weighted(1.2)));
+        b.series.push(Series::line(
+            Some("$Fv_∞$"),
+            pts,
+            Look::nth(1).weighted(1.2),
+        ));
         b.series.push(Series::points(
             Some("largest output power"),
             vec![(x_of(best.at.load), best.power)],
@@ -206,7 +209,7 @@ pub fn figure(c: &Characteristic, scene: &Scene, name: &str) -> Result<Figure, P
     let value = |x: Option<f64>| x.map_or("–".to_owned(), short);
     let note = match &c.max_power {
         Some(p) => format!(
-            "F opposes forward motion (g_t = −F/m_s). No-load speed {} m/s, stall force {} N, holding force μ₀F_c = {} N, largest output power {} mW at F = {} N, recommended load {} N.",
+            "F opposes forward motion (g_t = -F/m_s). No-load speed {} m/s, stall force {} N, holding force mu_0 F_c = {} N, largest output power {} mW at F = {} N, recommended load {} N.",
             short(d.max_speed),
             value(d.stall_force),
             short(d.holding_force),
@@ -215,7 +218,7 @@ pub fn figure(c: &Characteristic, scene: &Scene, name: &str) -> Result<Figure, P
             value(d.recommended_load),
         ),
         None => format!(
-            "F opposes forward motion (g_t = −F/m_s). No drive at zero load (v∞ = {} m/s); holding force μ₀F_c = {} N.",
+            "F opposes forward motion (g_t = -F/m_s). No drive at zero load (v_inf = {} m/s); holding force mu_0 F_c = {} N.",
             short(d.max_speed),
             short(d.holding_force),
         ),

@@ -1,17 +1,18 @@
 //! Print-ready files: SVG as drawn, PDF through svg2pdf and PNG through
 //! resvg, the format chosen by the output's extension.
 //!
-//! Contract: PDF and PNG are rendered with only the shipped font
-//! (`src/plot/font.rs`, DejaVu Sans) loaded, so their bytes do not depend on the machine's
+//! Contract: PDF and PNG are rendered with only the shipped fonts
+//! (`src/plot/font.rs`, DejaVu Sans and its oblique face) loaded, so their bytes do not depend on the machine's
 //! fonts; the PDF embeds a subset of it (its text stays text) on a page of
 //! the figure's printed size, with the program version in its information
 //! dictionary; the PNG is `width_mm / 25.4 × dpi` pixels wide, on white,
 //! with its resolution stated (`pHYs`) so that it prints at that size, and
 //! the program version as its `Software` text.
-//! The same SVG gives the same bytes.
+//! The same SVG gives the same bytes (for PDF, the fonts' objects in a
+//! fixed order: upright face first).
 
 use super::PlotError;
-use super::font::{FAMILY, FONT_DATA};
+use super::font::{FAMILY, FONT_DATA, OBLIQUE_DATA};
 use pdf_writer::{Content, Finish, Name, Pdf, Rect, Ref, TextStr};
 use resvg::{tiny_skia, usvg};
 use std::collections::HashMap;
@@ -58,6 +59,7 @@ fn tree(svg: &str) -> Result<usvg::Tree, PlotError> {
     };
     let db = options.fontdb_mut();
     db.load_font_data(FONT_DATA.to_vec());
+    db.load_font_data(OBLIQUE_DATA.to_vec());
     db.set_sans_serif_family(FAMILY);
     usvg::Tree::from_str(svg, &options)
         .map_err(|e| PlotError::Export(format!("reading the SVG: {e}")))
@@ -67,8 +69,22 @@ fn tree(svg: &str) -> Result<usvg::Tree, PlotError> {
 /// `producer` and `title` in the information dictionary.
 pub(crate) fn pdf(svg: &str, producer: &str, title: &str) -> Result<Vec<u8>, PlotError> {
     let tree = tree(svg)?;
-    let (chunk, svg_ref) = svg2pdf::to_chunk(&tree, svg2pdf::ConversionOptions::default())
-        .map_err(|e| PlotError::Export(format!("converting to PDF: {e}")))?;
+    // svg2pdf writes the fonts a figure uses, and lists them in its
+    // resources, in the order of hash maps, which differs from run to run;
+    // with both shipped faces in one figure the bytes would too. Of the
+    // four orders, the one with the upright face first and the resources
+    // sorted by name is kept: each conversion has one chance in four of it
+    // (not finding it in 128 tries has odds of 1e-16).
+    let mut tries = 0;
+    let (chunk, svg_ref) = loop {
+        let (chunk, svg_ref) = svg2pdf::to_chunk(&tree, svg2pdf::ConversionOptions::default())
+            .map_err(|e| PlotError::Export(format!("converting to PDF: {e}")))?;
+        tries += 1;
+        let bytes = chunk.as_bytes();
+        if (upright_font_first(bytes) && fonts_listed_in_order(bytes)) || tries == 128 {
+            break (chunk, svg_ref);
+        }
+    };
     let mut alloc = Ref::new(1);
     let catalog = alloc.bump();
     let pages = alloc.bump();
@@ -101,6 +117,44 @@ pub(crate) fn pdf(svg: &str, producer: &str, title: &str) -> Result<Vec<u8>, Plo
         .creator(TextStr(producer))
         .title(TextStr(title));
     Ok(pdf.finish())
+}
+
+/// True unless the oblique face's font objects come before the upright
+/// face's (or only one face is used).
+fn upright_font_first(pdf: &[u8]) -> bool {
+    let find = |needle: &[u8], from: usize| {
+        pdf[from..]
+            .windows(needle.len())
+            .position(|w| w == needle)
+            .map(|i| i + from)
+    };
+    let Some(oblique) = find(b"DejaVuSans-Oblique", 0) else {
+        return true;
+    };
+    // The first mention of the upright face: "DejaVuSans" not followed by
+    // "-Oblique".
+    let mut at = 0;
+    while let Some(i) = find(b"DejaVuSans", at) {
+        if !pdf[i..].starts_with(b"DejaVuSans-Oblique") {
+            return i < oblique;
+        }
+        at = i + 1;
+    }
+    true
+}
+
+/// True if every `/Font << ... >>` resource dictionary lists its fonts in
+/// ascending name order.
+fn fonts_listed_in_order(pdf: &[u8]) -> bool {
+    let text = String::from_utf8_lossy(pdf);
+    text.split("/Font <<").skip(1).all(|rest| {
+        let dict = rest.split(">>").next().unwrap_or("");
+        let names: Vec<&str> = dict
+            .split_whitespace()
+            .filter(|w| w.starts_with('/'))
+            .collect();
+        names.windows(2).all(|w| w[0] <= w[1])
+    })
 }
 
 /// The figure as PNG at `dpi` pixels per inch, on white, `producer` in

@@ -3,15 +3,18 @@
 //!
 //! Contract: the figure is [`Style::width_mm`] wide; its height is
 //! [`Style::height_mm`] when given, otherwise what the panels need at the
-//! plot's aspect ratio. Gutters are measured with the font's metrics, so
+//! plot's aspect ratio (taller where a y-axis description at the smallest
+//! print size needs it). Gutters are measured with the font's metrics, so
 //! tick labels and axis descriptions never overlap the plotting area or
 //! each other's panels. Every text is set at [`Style::font_pt`] or
 //! [`Style::tick_pt`].
 
 use super::axes::Axis;
 use super::canvas::{Anchor, Canvas};
+use super::colorbar::{self, ColorBar};
 use super::font::{DIGIT_HEIGHT, text_width};
 use super::legend::{self, LegendEntry, legend_of, marker_size};
+use super::marks::{Marks, Role};
 use super::series::{Kind, Panel, clip_polyline};
 use super::style::{GRID, MIN_FONT_PT, Rgb, Style};
 
@@ -26,8 +29,12 @@ pub struct Plot {
     pub aspect: f64,
     /// Legend entries (by default those of the panels' labelled series).
     pub legend: Vec<LegendEntry>,
-    /// Lines of text under the legend (what the legend cannot say).
+    /// The caption's text (what the legend cannot say): not drawn, written
+    /// as `# caption:` lines at the head of the figure's CSV
+    /// ([`super::Figure::data`]).
     pub notes: Vec<String>,
+    /// The scale of a map's colours, drawn above the panels.
+    pub colorbar: Option<ColorBar>,
 }
 
 impl Plot {
@@ -40,10 +47,17 @@ impl Plot {
             aspect,
             legend,
             notes: Vec::new(),
+            colorbar: None,
         }
     }
 
-    /// The same plot with note lines under the legend.
+    /// The same plot with a colour bar above its panels.
+    pub fn with_colorbar(mut self, bar: ColorBar) -> Self {
+        self.colorbar = Some(bar);
+        self
+    }
+
+    /// The same plot with caption lines (written to the CSV, not drawn).
     pub fn with_notes(mut self, notes: Vec<String>) -> Self {
         self.notes = notes;
         self
@@ -52,6 +66,24 @@ impl Plot {
     /// Draws the plot at `style`; `metadata` goes into the SVG's
     /// `<metadata>`.
     pub fn render(&self, style: &Style, metadata: &str) -> String {
+        let (canvas, size) = self.draw(style);
+        canvas.finish(size, metadata)
+    }
+
+    /// What [`Plot::render`] puts where at `style`: text boxes, frames,
+    /// data and the legend's box (see `marks`).
+    pub fn marks(&self, style: &Style) -> Marks {
+        let (canvas, (w, h)) = self.draw(style);
+        let pt = super::style::PT_PER_MM;
+        Marks {
+            width: w * pt,
+            height: h * pt,
+            ..canvas.marks
+        }
+    }
+
+    /// The drawing and its printed size (mm).
+    fn draw(&self, style: &Style) -> (Canvas, (f64, f64)) {
         let f = style.font_pt;
         let width = style.width_pt();
         let pad = 0.5 * f;
@@ -65,6 +97,7 @@ impl Plot {
                 f * 1.15,
                 Anchor::Middle,
                 0.0,
+                Role::Title,
             );
             y += 1.6 * f;
         }
@@ -72,15 +105,9 @@ impl Plot {
             legend::draw(&mut canvas, &self.legend, (pad, y), inner, style);
             y += legend::height(&self.legend, inner, style) + 0.2 * f;
         }
-        for line in self.notes.iter().flat_map(|n| wrap(n, TEXT_FIT * inner, f)) {
-            canvas.text(
-                &line,
-                (pad, y + DIGIT_HEIGHT * f + 0.1 * f),
-                f,
-                Anchor::Start,
-                0.0,
-            );
-            y += 1.3 * f;
+        if let Some(bar) = &self.colorbar {
+            colorbar::draw(&mut canvas, bar, (pad, y + 0.2 * f), inner, style);
+            y += colorbar::height(style) + 0.4 * f;
         }
         let mut gutters: Vec<Gutter> = self.panels.iter().map(|p| Gutter::of(p, style)).collect();
         // The plot's columns, fewer when its panels would be narrower than
@@ -132,9 +159,17 @@ impl Plot {
         let fixed: f64 = (0..rows)
             .map(|r| row_max(r, |g| g.top) + row_max(r, |g| g.bottom))
             .sum();
+        // A panel is at least as tall as its y-axis description at the
+        // smallest print size, so that descriptions of panels one above
+        // the other never run into each other.
+        let y_label_min = self
+            .panels
+            .iter()
+            .map(|p| text_width(&p.y.label, MIN_FONT_PT.min(f)) / TEXT_FIT)
+            .fold(0.0, f64::max);
         let plot_h = match style.height_mm {
             Some(h) => ((h * super::style::PT_PER_MM - y - pad - fixed) / rows as f64).max(f),
-            None => plot_w * self.aspect,
+            None => (plot_w * self.aspect).max(y_label_min),
         };
         for (i, panel) in self.panels.iter().enumerate() {
             let (r, c) = (i / columns, i % columns);
@@ -164,7 +199,7 @@ impl Plot {
                 .sum::<f64>()
             + pad;
         let height_mm = style.height_mm.unwrap_or(height / super::style::PT_PER_MM);
-        canvas.finish((style.width_mm, height_mm), metadata)
+        (canvas, (style.width_mm, height_mm))
     }
 }
 
@@ -276,11 +311,32 @@ fn draw_panel(
     let axis_pt = 0.6 * style.line_pt.min(1.5);
     // As many tick labels as fit side by side (x) or one above the other
     // (y) at this size.
-    let x_ticks = fitting_ticks(&panel.x, |labels| {
-        let widest = labels.iter().map(|l| text_width(l, t)).fold(0.0, f64::max);
-        (widest + 0.8 * f) * labels.len() as f64 <= area.w
-    });
-    let y_ticks = fitting_ticks(&panel.y, |labels| 1.6 * t * labels.len() as f64 <= area.h);
+    // Neighbouring labels of a log or phase axis at least this far apart
+    // (pt) beyond their half widths (x) or their height (y).
+    let x_apart = |shown: &[&super::axes::Tick]| {
+        shown.windows(2).all(|w| {
+            let d = area.w * (panel.x.fraction(w[1].value) - panel.x.fraction(w[0].value)).abs();
+            d >= (text_width(&w[0].label, t) + text_width(&w[1].label, t)) / 2.0 + 0.4 * f
+        })
+    };
+    let y_apart = |shown: &[&super::axes::Tick]| {
+        shown.windows(2).all(|w| {
+            area.h * (panel.y.fraction(w[1].value) - panel.y.fraction(w[0].value)).abs() >= 1.2 * t
+        })
+    };
+    let x_ticks = fitting_ticks(
+        &panel.x,
+        |labels| {
+            let widest = labels.iter().map(|l| text_width(l, t)).fold(0.0, f64::max);
+            (widest + 0.8 * f) * labels.len() as f64 <= area.w
+        },
+        x_apart,
+    );
+    let y_ticks = fitting_ticks(
+        &panel.y,
+        |labels| 1.6 * t * labels.len() as f64 <= area.h,
+        y_apart,
+    );
     // Grid lines at labelled ticks, under the data.
     let inside = |v: f64| (-1e-9..=1.0 + 1e-9).contains(&v);
     for k in x_ticks.iter().filter(|k| !k.label.is_empty()) {
@@ -316,6 +372,7 @@ fn draw_panel(
                 t,
                 Anchor::Middle,
                 0.0,
+                Role::TickLabel,
             );
         }
     }
@@ -338,6 +395,7 @@ fn draw_panel(
                 t,
                 Anchor::End,
                 0.0,
+                Role::TickLabel,
             );
         }
     }
@@ -348,6 +406,7 @@ fn draw_panel(
         f,
         Anchor::Middle,
         0.0,
+        Role::AxisLabel,
     );
     let y_label_x = area.x - left_gutter + 0.95 * f;
     // A description longer than the panel is tall is set smaller, down to
@@ -360,6 +419,7 @@ fn draw_panel(
         (y_size * 100.0).floor() / 100.0,
         Anchor::Middle,
         -90.0,
+        Role::AxisLabel,
     );
     if let Some(title) = &panel.title {
         let lines = wrap(title, title_width, f);
@@ -371,6 +431,7 @@ fn draw_panel(
                 f,
                 Anchor::Start,
                 0.0,
+                Role::PanelTitle,
             );
         }
     }
@@ -386,15 +447,21 @@ fn draw_panel(
                 Anchor::End if px - w < area.x => Anchor::Start,
                 a => a,
             };
-            canvas.text(&note.text, (px, py), f, anchor, 0.0);
+            canvas.text(&note.text, (px, py), f, anchor, 0.0, Role::Annotation);
         }
     }
 }
 
 /// The axis's ticks with the most labels, up to its wish, that `fits`
 /// (given the labels); at least two labels on a linear axis. A
-/// logarithmic axis keeps its ticks.
-fn fitting_ticks(axis: &Axis, fits: impl Fn(&[&str]) -> bool) -> Vec<super::axes::Tick> {
+/// logarithmic or phase axis keeps its ticks and labels fewer of them
+/// until `apart` (given the labelled ticks) holds: all of them, then (log)
+/// only the powers of ten, then every k-th of those.
+fn fitting_ticks(
+    axis: &Axis,
+    fits: impl Fn(&[&str]) -> bool,
+    apart: impl Fn(&[&super::axes::Tick]) -> bool,
+) -> Vec<super::axes::Tick> {
     let labelled = |ticks: &[super::axes::Tick]| -> Vec<String> {
         ticks
             .iter()
@@ -402,12 +469,53 @@ fn fitting_ticks(axis: &Axis, fits: impl Fn(&[&str]) -> bool) -> Vec<super::axes
             .map(|k| k.label.clone())
             .collect()
     };
+    if axis.log || axis.pi {
+        let ticks = axis.tick_marks();
+        let decade = |v: f64| {
+            let m = v / 10f64.powf(v.log10().floor());
+            (m - 1.0).abs() < 1e-9
+        };
+        let keep = |t: &super::axes::Tick, powers: bool| {
+            !t.label.is_empty() && (!powers || decade(t.value))
+        };
+        let count = ticks.iter().filter(|t| !t.label.is_empty()).count().max(1);
+        let mut candidates: Vec<(bool, usize)> = vec![(false, 1)];
+        if axis.log {
+            candidates.extend((1..=count).map(|k| (true, k)));
+        } else {
+            candidates.extend((2..=count).map(|k| (false, k)));
+        }
+        for (powers, every) in candidates {
+            let mut k = 0;
+            let thinned: Vec<super::axes::Tick> = ticks
+                .iter()
+                .map(|t| {
+                    let mut t = t.clone();
+                    if keep(&t, powers) {
+                        if k % every != 0 {
+                            t.label.clear();
+                        }
+                        k += 1;
+                    } else {
+                        t.label.clear();
+                    }
+                    t
+                })
+                .collect();
+            let shown: Vec<&super::axes::Tick> =
+                thinned.iter().filter(|t| !t.label.is_empty()).collect();
+            if shown.len() <= 2 || apart(&shown) {
+                return thinned;
+            }
+        }
+        return ticks;
+    }
     let mut wanted = axis.ticks;
     loop {
         let ticks = axis.clone().with_ticks(wanted).tick_marks();
         let labels = labelled(&ticks);
         let refs: Vec<&str> = labels.iter().map(String::as_str).collect();
-        if axis.log || wanted <= 2 || fits(&refs) {
+        if wanted <= 2 || fits(&refs) {
             return ticks;
         }
         wanted -= 1;

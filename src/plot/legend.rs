@@ -7,6 +7,7 @@
 
 use super::canvas::{Anchor, Canvas};
 use super::font::{DIGIT_HEIGHT, text_width};
+use super::marks::Role;
 use super::series::{Kind, Panel};
 use super::style::{Look, Style};
 
@@ -102,6 +103,7 @@ pub(crate) fn draw(
     style: &Style,
 ) {
     let m = Metrics::of(style);
+    canvas.legend_mode(true);
     for (r, row) in rows(entries, width, &m).into_iter().enumerate() {
         let mid = y + (r as f64 + 0.5) * m.row;
         let mut at = x;
@@ -115,10 +117,12 @@ pub(crate) fn draw(
                 m.font,
                 Anchor::Start,
                 0.0,
+                Role::Legend,
             );
             at += m.entry_width(e) + m.entry_gap;
         }
     }
+    canvas.legend_mode(false);
 }
 
 fn swatch(canvas: &mut Canvas, e: &LegendEntry, (x, y): (f64, f64), m: &Metrics, style: &Style) {

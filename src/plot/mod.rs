@@ -9,10 +9,15 @@
 //!   colours, dash patterns, markers);
 //! * `axes`: ranges, linear and logarithmic ticks, tick labels;
 //! * `series`: curves, points, bands, panels, clipping;
-//! * `legend`: legend entries and their layout;
+//! * `legend`: legend entries and their layout; `colorbar`: the scale of
+//!   a map's colours;
 //! * `layout`: panels in a grid at the printed size, drawn to SVG;
 //! * `export`: SVG to PDF (svg2pdf) and PNG (resvg);
-//! * `data`: the CSV behind each figure; `font`: the shipped font.
+//! * `data`: the CSV behind each figure; `font`: the shipped fonts;
+//!   `text`: quantity markup (italic, subscripts) and its measurement;
+//! * [`marks`]: what a drawing put where (text boxes, frames, data, the
+//!   legend's box); [`review`]: a journal reviewer's checks on them;
+//!   [`registry`]: every figure the project draws, for those checks.
 //!
 //! The figure families, one file each:
 //!
@@ -38,7 +43,12 @@
 //!
 //! A [`Figure`] holds its drawing ([`Plot`]) and its data (CSV text);
 //! [`Figure::svg`] draws it at a [`Style`]. Text is at least 7 pt at the
-//! printed size; there is no title unless the style has one; no two
+//! printed size (scripts included); quantities are typeset from the table
+//! of symbols (`src/symbol.rs`) in the markup of `text` (italic, real
+//! subscripts); there is no title unless the style has one and no caption
+//! text in the drawing (what a caption says goes to the CSV's `# caption:`
+//! lines, [`Figure::data`]); a legend takes at most a quarter of the
+//! height; no two
 //! labelled series share both dash pattern and marker; nothing is drawn in
 //! the background colour. Nothing depends on the clock, the thread count
 //! or the machine's fonts, so the same inputs give the same bytes. Every
@@ -49,24 +59,30 @@
 mod axes;
 mod canvas;
 pub mod characteristic;
+mod colorbar;
 pub mod compare;
 mod data;
 pub(crate) mod export;
 mod font;
 mod layout;
 mod legend;
+pub mod marks;
 pub mod motion;
 pub mod optimize;
 pub mod performance;
+pub mod registry;
+pub mod review;
 pub mod scaling;
 mod series;
 pub mod signals;
 pub(crate) mod style;
 pub mod sweep;
+mod text;
 pub mod timeline;
 
 pub use axes::{Axis, superscript};
 pub use canvas::Anchor;
+pub use colorbar::ColorBar;
 pub use data::{Cell, Csv};
 pub use export::Format;
 pub use font::{FAMILY, text_width};
@@ -74,6 +90,7 @@ pub use layout::{Plot, fitted};
 pub use legend::LegendEntry;
 pub use series::{Kind, Panel, Series};
 pub use style::{Dash, Look, Marker, Preset, Rgb, Style};
+pub use text::visible;
 
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -96,10 +113,30 @@ pub struct Figure {
 }
 
 impl Figure {
+    /// The CSV written beside the figure: the caption's text
+    /// ([`Plot::notes`], which figures do not draw) as `# caption: ` lines,
+    /// then [`Figure::csv`].
+    pub fn data(&self) -> String {
+        let mut text: String = self
+            .plot
+            .notes
+            .iter()
+            .map(|n| format!("# caption: {}\n", visible(n)))
+            .collect();
+        text.push_str(&self.csv);
+        text
+    }
+
     /// The figure's SVG at `style`.
     pub fn svg(&self, style: &Style) -> String {
         self.plot
             .render(style, &format!("{PRODUCER}; figure {}", self.name))
+    }
+
+    /// What [`Figure::svg`] puts where at `style` (text boxes, frames,
+    /// data, the legend's box), for [`review::review`].
+    pub fn marks(&self, style: &Style) -> marks::Marks {
+        self.plot.marks(style)
     }
 
     /// The figure's bytes in `format` at `style` (`dpi` for PNG).
@@ -113,14 +150,14 @@ impl Figure {
     }
 
     /// Writes the figure to `path` (format from the extension) and its CSV
-    /// beside it ([`data_path`]: `path` with `.csv` appended), each
+    /// ([`Figure::data`]) beside it ([`data_path`]: `path` with `.csv` appended), each
     /// atomically. The directory must exist. Returns the two paths.
     pub fn write(&self, path: &Path, style: &Style, dpi: f64) -> Result<[PathBuf; 2], PlotError> {
         let format = Format::of(path)?;
         let bytes = self.encode(format, style, dpi)?;
         let csv = data_path(path);
         write_atomically(path, &bytes)?;
-        write_atomically(&csv, self.csv.as_bytes())?;
+        write_atomically(&csv, self.data().as_bytes())?;
         Ok([path.to_owned(), csv])
     }
 
@@ -200,6 +237,12 @@ impl PlotError {
             source,
         }
     }
+}
+
+/// The entry `key` of the table of symbols (`src/symbol.rs`); the figures
+/// name only quantities the table has.
+pub(crate) fn sym(key: &str) -> &'static crate::symbol::Symbol {
+    crate::symbol::symbol(key).unwrap_or_else(|| panic!("{key} is in the table of symbols"))
 }
 
 /// `n` evenly spaced values from `a` to `b`, both included.

@@ -145,9 +145,9 @@ fn record(
                 };
             }
             let label = if a == b {
-                format!("p = {a}")
+                format!("$p$ = {a}")
             } else {
-                format!("p = {a} … {b}")
+                format!("$p$ = {a} … {b}")
             };
             Ok(Motion {
                 label,
@@ -173,7 +173,7 @@ fn record(
             };
             engine.run_period(2, start, &mut rec).map_err(sim)?;
             Ok(Motion {
-                label: "steady state, p\u{a0}→\u{a0}∞".to_owned(),
+                label: "steady state, $p$\u{a0}→\u{a0}∞".to_owned(),
                 segments: rec.segments,
                 events: rec.events,
                 first: 2,
@@ -257,7 +257,7 @@ pub fn motion(
         let samples = sample(m, &signal, period);
         for s in &samples {
             csv.row(&[
-                Cell::S(&m.label),
+                Cell::S(&crate::plot::visible(&m.label)),
                 Cell::S("sample"),
                 Cell::I(s.period as i64),
                 Cell::S(s.mode.name()),
@@ -281,7 +281,7 @@ pub fn motion(
             .collect();
         for (t, kind, v) in &events {
             csv.row(&[
-                Cell::S(&m.label),
+                Cell::S(&crate::plot::visible(&m.label)),
                 Cell::S("event"),
                 Cell::I(0),
                 Cell::S(kind.name()),
@@ -295,8 +295,9 @@ pub fn motion(
             ]);
         }
         let t_end = samples.last().map_or(period, |s| s.t);
-        let t_axis =
-            || Axis::linear(&format!("t ({t_unit})"), (0.0, t_end * t_scale)).scaled(t_scale);
+        let t_axis = || {
+            Axis::linear(&format!("time $t$ ({t_unit})"), (0.0, t_end * t_scale)).scaled(t_scale)
+        };
         let mut column = Vec::new();
         for (r, row) in rows.iter().enumerate() {
             let title =
@@ -307,22 +308,24 @@ pub fn motion(
                     let mut p = Panel::new(
                         title.as_deref(),
                         t_axis(),
-                        Axis::linear("velocity (m/s)", padded(lo, hi, 0.06)),
+                        Axis::linear("velocity $v$ (m/s)", padded(lo, hi, 0.06)),
                     );
+                    p.series
+                        .push(curve("rod", &samples, |s| s.v_rod, rod_look()));
+                    p.series
+                        .push(curve("slider", &samples, |s| s.v_slider, slider_look()));
+                    // Drawn over the curves, so that it shows where the
+                    // slider's velocity crosses it.
                     if m.label.starts_with("steady")
                         && let Some((_, v_inf)) = steady
                     {
                         p.series.push(Series::hline(
-                            Some("v∞"),
+                            Some(super::sym("v_inf").quantity),
                             v_inf,
                             (0.0, t_end),
                             Look::reference(),
                         ));
                     }
-                    p.series
-                        .push(curve("rod", &samples, |s| s.v_rod, rod_look()));
-                    p.series
-                        .push(curve("slider", &samples, |s| s.v_slider, slider_look()));
                     for (kind, look) in event_looks() {
                         let pts: Vec<(f64, f64)> = events
                             .iter()
@@ -341,7 +344,7 @@ pub fn motion(
                     let mut p = Panel::new(
                         title.as_deref(),
                         t_axis(),
-                        Axis::linear("displacement (µm)", padded(lo * 1e6, hi * 1e6, 0.06))
+                        Axis::linear("displacement $x$ (µm)", padded(lo * 1e6, hi * 1e6, 0.06))
                             .scaled(1e6),
                     );
                     p.series
@@ -361,10 +364,10 @@ pub fn motion(
                     let mut p = Panel::new(
                         title.as_deref(),
                         t_axis(),
-                        Axis::linear("acceleration (m/s²)", padded(lo, hi, 0.06)),
+                        Axis::linear("acceleration $a$ (m/s²)", padded(lo, hi, 0.06)),
                     );
                     p.series.push(Series::bands(
-                        Some("stick band a₀⁻ … a₀⁺"),
+                        Some("stick band $a_0^-$ … $a_0^+$"),
                         vec![[(0.0, a_minus), (t_end, a_plus)]],
                         band_look(),
                     ));
@@ -561,18 +564,18 @@ pub fn startup(scene: &Scene, name: &str) -> Result<Figure, PlotError> {
     let (lo, hi) = min_max(pts.iter().map(|p| p.1).chain([0.0, v_inf]));
     let mut panel = Panel::new(
         None,
-        Axis::linear("period p", (0.0, p_end + 0.5)).integers(),
-        Axis::linear("mean velocity v_p (m/s)", padded(lo, hi, 0.06)),
+        Axis::linear(&super::sym("p").label(), (0.0, p_end + 0.5)).integers(),
+        Axis::linear(&super::sym("v_p").label(), padded(lo, hi, 0.06)),
     );
     panel.series.push(Series::hline(
-        Some("v∞"),
+        Some(super::sym("v_inf").quantity),
         v_inf,
         (0.0, p_end + 0.5),
         Look::reference(),
     ));
     if let Some(p99) = report.startup_periods {
         panel.series.push(Series::line(
-            Some("p₀.₉₉"),
+            Some(super::sym("startup_periods").quantity),
             vec![(p99 as f64, lo - (hi - lo)), (p99 as f64, hi + (hi - lo))],
             Look::line(super::style::GREY, Dash::Dotted),
         ));
@@ -582,7 +585,9 @@ pub fn startup(scene: &Scene, name: &str) -> Result<Figure, PlotError> {
     } else {
         Look::nth(0)
     };
-    panel.series.push(Series::line(Some("v_p"), pts, look));
+    panel
+        .series
+        .push(Series::line(Some(super::sym("v_p").quantity), pts, look));
     Ok(Figure {
         name: name.to_owned(),
         plot: Plot::grid(vec![panel], 1, 0.62),

@@ -9,14 +9,16 @@
 //!   sigma and plain Fourier signals marked.
 //!
 //! The heat map's colours are eight levels of the viridis scale, whose
-//! lightness grows monotonically, so the levels read in greyscale too;
-//! grid points without a steady state are light grey. Each cell is
+//! lightness grows monotonically, so the levels read in greyscale too; a
+//! colour bar above the panel gives their values of `v_inf`; the phase
+//! axis is ticked at multiples of π/2; grid points without a steady state
+//! are light grey. Each cell is
 //! centred on its grid point; neighbouring cells of one level in a row
 //! are drawn as one rectangle.
 
 use super::{
-    Axis, Cell, Csv, Dash, Figure, Look, Marker, Panel, Plot, PlotError, Preset, Rgb, Series,
-    linspace, min_max, padded,
+    Axis, Cell, ColorBar, Csv, Dash, Figure, Look, Marker, Panel, Plot, PlotError, Preset, Rgb,
+    Series, linspace, min_max, padded,
 };
 use crate::motor::Motor;
 use crate::optimize::Optimum;
@@ -73,10 +75,10 @@ pub fn signal_figure(optimum: &Optimum, name: &str) -> Result<Figure, PlotError>
     let best = built(&p.spec(&optimum.best.shape.series(p.stroke)), &motor, name)?;
     let v_best = optimum.best.measured.values.v_inf;
     let mut curves: Vec<(String, FourierSignal)> =
-        vec![(format!("optimum, v∞ = {v_best:.4} m/s"), best)];
+        vec![(format!("optimum, $v_∞$ = {v_best:.4} m/s"), best)];
     if let Some(r) = optimum.references.iter().find(|r| r.name == "sigma") {
         let label = match &r.measured {
-            Ok(m) => format!("σ factors (15), v∞ = {:.4} m/s", m.values.v_inf),
+            Ok(m) => format!("$σ$ factors (15), $v_∞$ = {:.4} m/s", m.values.v_inf),
             Err(_) => "σ factors (15)".to_owned(),
         };
         curves.push((label, built(&r.spec, &motor, name)?));
@@ -115,9 +117,9 @@ pub fn signal_figure(optimum: &Optimum, name: &str) -> Result<Figure, PlotError>
         csv.row(&cells);
     }
     let rows: [(&str, f64, Quantity); 3] = [
-        ("rod position (µm)", 1e6, |s| s.x),
-        ("rod velocity (m/s)", 1.0, |s| s.v),
-        ("rod acceleration (m/s²)", 1.0, |s| s.a),
+        ("rod position $x_R$ (µm)", 1e6, |s| s.x),
+        ("rod velocity $v_R$ (m/s)", 1.0, |s| s.v),
+        ("rod acceleration $a_R$ (m/s²)", 1.0, |s| s.a),
     ];
     let mut panels = Vec::new();
     for (label, scale, of) in rows.iter() {
@@ -133,12 +135,12 @@ pub fn signal_figure(optimum: &Optimum, name: &str) -> Result<Figure, PlotError>
         let (lo, hi) = min_max(pts.iter().flatten().map(|q| q.1 * scale));
         let mut panel = Panel::new(
             None,
-            Axis::linear("t (µs)", (0.0, period * 1e6)).scaled(1e6),
+            Axis::linear("time $t$ (µs)", (0.0, period * 1e6)).scaled(1e6),
             Axis::linear(label, padded(lo, hi, 0.06)).scaled(*scale),
         );
-        if *label == "rod velocity (m/s)" {
+        if *label == "rod velocity $v_R$ (m/s)" {
             panel.series.push(Series::hline(
-                Some("v∞ of the optimum"),
+                Some("$v_∞$ of the optimum"),
                 v_best,
                 (0.0, period),
                 Look::reference(),
@@ -157,16 +159,6 @@ pub fn signal_figure(optimum: &Optimum, name: &str) -> Result<Figure, PlotError>
         csv: csv.finish(),
         preset: Preset::SingleColumn,
     })
-}
-
-/// A number for a level's label: three decimals.
-fn level_label(v: f64) -> String {
-    let s = format!("{v:.3}");
-    if s == "-0.000" {
-        "0.000".to_owned()
-    } else {
-        s.replace('-', "−")
-    }
 }
 
 /// The `n = 2` map as a heat map (module docs).
@@ -219,24 +211,22 @@ pub fn map_figure(map: &Map, name: &str) -> Result<Figure, PlotError> {
     }
     let mut panel = Panel::new(
         None,
-        Axis::linear("relative phase ψ = φ₂ − 2φ₁ (rad)", (0.0, TAU)),
-        Axis::linear("amplitude ratio d₂/d₁", (0.0, grid.max_ratio)),
+        Axis::linear("relative phase $ψ$ = $φ_2$ − 2$φ_1$ (rad)", (0.0, TAU)).in_pi(),
+        Axis::linear("amplitude ratio $d_2$/$d_1$", (0.0, grid.max_ratio)),
     );
     for (level, rects) in spans.into_iter().enumerate() {
         if rects.is_empty() {
             continue;
         }
+        // The levels read off the colour bar; only cells without a steady
+        // state have a legend entry.
         let (color, label) = if level == levels {
-            (MISSING, "no steady state".to_owned())
+            (MISSING, Some("no steady state"))
         } else {
-            let a = lo + width * level as f64;
-            (
-                VIRIDIS[level],
-                format!("{} to {}", level_label(a), level_label(a + width)),
-            )
+            (VIRIDIS[level], None)
         };
         panel.series.push(Series::bands(
-            Some(&label),
+            label,
             rects,
             Look {
                 color,
@@ -255,11 +245,11 @@ pub fn map_figure(map: &Map, name: &str) -> Result<Figure, PlotError> {
         if let Some(m) = map.marks.iter().find(|m| m.name == mark_name) {
             let text = match mark_name {
                 "optimum" => "optimum",
-                "sigma" => "σ factors (15)",
+                "sigma" => "$σ$ factors (15)",
                 _ => "plain Fourier series",
             };
             let label = match m.v_inf {
-                Some(v) => format!("{text}, v∞ = {v:.4} m/s"),
+                Some(v) => format!("{text}, $v_∞$ = {v:.4} m/s"),
                 None => text.to_owned(),
             };
             panel.series.push(Series::points(
@@ -276,7 +266,11 @@ pub fn map_figure(map: &Map, name: &str) -> Result<Figure, PlotError> {
     }
     Ok(Figure {
         name: name.to_owned(),
-        plot: Plot::grid(vec![panel], 1, 0.62).with_notes(vec!["Colours: v∞ in m/s.".to_owned()]),
+        plot: Plot::grid(vec![panel], 1, 0.62).with_colorbar(ColorBar {
+            label: super::sym("v_inf").label(),
+            range: (lo, lo + width * levels as f64),
+            colors: VIRIDIS.to_vec(),
+        }),
         csv: map.csv(),
         preset: Preset::SingleColumn,
     })

@@ -78,11 +78,12 @@ impl GridPoint {
     }
 }
 
-/// One indicator panel: title, axis label, how to read the value, the
-/// drawing scale.
+/// One indicator panel: title, the indicator's key in the table of
+/// symbols and the unit drawn, how to read the value, the drawing scale.
 struct PanelSpec {
     title: &'static str,
-    label: &'static str,
+    symbol: &'static str,
+    unit: &'static str,
     value: fn(&GridPoint) -> Option<f64>,
     scale: f64,
     /// Logarithmic y axis (values spanning two decades).
@@ -93,35 +94,40 @@ const PANELS: [PanelSpec; 5] = [
     PanelSpec {
         title: "(a) steady-state velocity",
         log: false,
-        label: "v∞ (m/s)",
+        symbol: "v_inf",
+        unit: "m/s",
         value: |p| Some(p.v_inf),
         scale: 1.0,
     },
     PanelSpec {
         title: "(b) start-up time",
         log: true,
-        label: "T·p₀.₉₉ (ms)",
+        symbol: "startup_time",
+        unit: "ms",
         value: GridPoint::startup_time,
         scale: 1e3,
     },
     PanelSpec {
         title: "(c) smoothness",
         log: true,
-        label: "ζ∞ (–)",
+        symbol: "smoothness",
+        unit: "1",
         value: |p| Some(p.smoothness),
         scale: 1.0,
     },
     PanelSpec {
         title: "(d) velocity per input power",
         log: false,
-        label: "v∞ / S (mm s⁻¹ VA⁻¹)",
+        symbol: "velocity_per_power",
+        unit: "mm s⁻¹ VA⁻¹",
         value: |p| p.velocity_per_power,
         scale: 1e3,
     },
     PanelSpec {
         title: "(e) durability",
         log: false,
-        label: "δ∞ (N⁻¹)",
+        symbol: "durability",
+        unit: "N⁻¹",
         value: |p| Some(p.durability),
         scale: 1.0,
     },
@@ -241,18 +247,24 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
             .zip(&ranges)
             .enumerate()
             .map(|(i, (ind, range))| {
+                let q = super::sym(ind.symbol).quantity;
+                let label = if ind.unit == "1" {
+                    q.to_owned()
+                } else {
+                    format!("{q} ({})", ind.unit)
+                };
                 let mut panel = Panel::new(
                     Some(ind.title),
                     Axis::linear(
-                        "number of harmonics n",
+                        &super::sym("harmonics").label(),
                         (n_lo as f64 - 0.3, n_hi as f64 + 0.3),
                     )
                     .with_ticks((n_hi - n_lo + 1).min(7))
                     .integers(),
                     if ind.log {
-                        Axis::log(ind.label, *range)
+                        Axis::log(&label, *range)
                     } else {
-                        Axis::linear(ind.label, *range).with_ticks(4)
+                        Axis::linear(&label, *range).with_ticks(4)
                     }
                     .scaled(ind.scale),
                 );
@@ -278,8 +290,11 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
                         .iter()
                         .find(|p| p.level == *level)
                         .map_or(f64::NAN, |p| p.f_max);
-                    let label =
-                        format!("n√κ = {} ({:.1} kHz)", tick_label(*level, 1.0), f_max / 1e3);
+                    let label = format!(
+                        "$n$√$κ$ = {} ({:.1} kHz)",
+                        tick_label(*level, 1.0),
+                        f_max / 1e3
+                    );
                     panel
                         .series
                         .push(Series::line(Some(&label), pts, level_look(c)));
@@ -288,7 +303,7 @@ pub fn figures6_7(points: &[GridPoint]) -> Result<[Figure; 2], PlotError> {
             })
             .collect();
         let notes = vec![format!(
-            "f_max = n√κ · 1574.8 Hz (37); paper motor, Table 1 actuator, stroke 25 µm; n = {n_lo} … {n_hi}; lines guide the eye"
+            "f_max = n sqrt(kappa) 1574.8 Hz (37); paper motor, Table 1 actuator, stroke 25 µm; n = {n_lo} … {n_hi}; lines guide the eye."
         )];
         Ok(Figure {
             name: name.to_owned(),

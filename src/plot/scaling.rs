@@ -44,11 +44,11 @@ pub fn figure9(motor: &Motor) -> Result<Figure, PlotError> {
     }
     let mut p = Panel::new(
         None,
-        Axis::log("actuator stroke x̂_R (µm)", (1.0, 1e3)).scaled(1e6),
-        Axis::log("frequency (kHz)", (0.3, 1e3)).scaled(1e-3),
+        Axis::log("actuator stroke $x̂_R$ (µm)", (1.0, 1e3)).scaled(1e6),
+        Axis::log("frequency $f$ (kHz)", (0.3, 1e3)).scaled(1e-3),
     );
     p.series.push(Series::line(
-        Some("f_max ∝ 1/√x̂_R (37)"),
+        Some("$f_{max}$ ∝ 1/√$x̂_R$ (37)"),
         // Power laws are straight on log-log axes: the ends draw them exactly.
         [strokes[0], strokes[strokes.len() - 1]]
             .iter()
@@ -57,7 +57,7 @@ pub fn figure9(motor: &Motor) -> Result<Figure, PlotError> {
         Look::nth(1).weighted(1.4),
     ));
     p.series.push(Series::line(
-        Some("f_allowed ∝ 1/x̂_R (43)"),
+        Some("$f_{allowed}$ ∝ 1/$x̂_R$ (43)"),
         [strokes[0], strokes[strokes.len() - 1]]
             .iter()
             .map(|&x| (x, f_allowed(x)))
@@ -65,7 +65,7 @@ pub fn figure9(motor: &Motor) -> Result<Figure, PlotError> {
         Look::nth(2).weighted(1.4),
     ));
     p.series.push(Series::line(
-        Some("best design, f_max = f_allowed"),
+        Some("best design, $f_{max}$ = $f_{allowed}$"),
         vec![(x_design, 1e2), (x_design, 1e6)],
         Look::reference(),
     ));
@@ -106,19 +106,19 @@ struct Shape {
 
 const SHAPES: [Shape; 3] = [
     Shape {
-        label: "n = 2, √κ = 6, with σ",
+        label: "$n$ = 2, √$κ$ = 6, with $σ$",
         kappa: 36.0,
         n: 2,
         sigma: true,
     },
     Shape {
-        label: "n = 3, κ = 1, no σ",
+        label: "$n$ = 3, $κ$ = 1, no $σ$",
         kappa: 1.0,
         n: 3,
         sigma: false,
     },
     Shape {
-        label: "n = 5, κ = 0.36, with σ",
+        label: "$n$ = 5, $κ$ = 0.36, with $σ$",
         kappa: 0.36,
         n: 5,
         sigma: true,
@@ -186,7 +186,7 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
         let shape = &SHAPES[s];
         let startup = p.map(|p| p as f64 * period);
         csv.row(&[
-            Cell::S(shape.label.replace(',', ";").as_str()),
+            Cell::S(crate::plot::visible(shape.label).replace(',', ";").as_str()),
             Cell::I(shape.n as i64),
             Cell::F(shape.kappa),
             Cell::S(if shape.sigma { "true" } else { "false" }),
@@ -204,9 +204,9 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
         }
     }
     let quantities = [
-        ("(a) v∞ (39): slope ½", "v∞ (m/s)", 0.5),
-        ("(b) x∞ (38): slope 1", "x∞ = v∞·T (m)", 1.0),
-        ("(c) T·p₀.₉₉ (42): slope ½", "T·p₀.₉₉ (s)", 0.5),
+        ("(a) $v_∞$ (39): slope ½", "$v_∞$ (m/s)", 0.5),
+        ("(b) $x_∞$ (38): slope 1", "$x_∞$ = $v_∞T$ (m)", 1.0),
+        ("(c) $Tp_{0.99}$ (42): slope ½", "$Tp_{0.99}$ (s)", 0.5),
     ];
     const SHAPE_MARKERS: [Marker; 3] = [Marker::Circle, Marker::Square, Marker::Triangle];
     let mut panels = Vec::new();
@@ -221,12 +221,16 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
         let mut p = Panel::new(
             Some(title),
             Axis::log(
-                "stroke x̂_R (m)",
+                "stroke $x̂_R$ (m)",
                 (strokes[0] / 2.0, strokes[strokes.len() - 1] * 2.0),
             ),
             Axis::log(label, y_range),
         );
-        let mut line = format!("{} fitted log-log slopes:", &title[..3]);
+        let mut line = format!(
+            "panel {} fitted log-log slopes ({}):",
+            &title[..3],
+            SHAPES.map(|s| crate::plot::visible(s.label)).join("; ")
+        );
         for (s, shape) in SHAPES.iter().enumerate() {
             let slope = loglog_slope(&data[s][q]);
             line.push_str(&format!(

@@ -75,9 +75,9 @@ impl Quantity {
 
     fn axis(self) -> (&'static str, f64) {
         match self {
-            Quantity::Position => ("rod position (µm)", 1e6),
-            Quantity::Velocity => ("rod velocity (m/s)", 1.0),
-            Quantity::Acceleration => ("rod acceleration (m/s²)", 1.0),
+            Quantity::Position => ("rod position $x_R$ (µm)", 1e6),
+            Quantity::Velocity => ("rod velocity $v_R$ (m/s)", 1.0),
+            Quantity::Acceleration => ("rod acceleration $a_R$ (m/s²)", 1.0),
         }
     }
 }
@@ -121,8 +121,8 @@ pub fn figure2(motor: &Motor) -> Result<Figure, PlotError> {
     const NAME: &str = "fig2_ideal_and_fourier";
     let a0 = motor.a_0();
     let columns = [
-        ("(a) discrete, t₁/T = 0.5", 0.5),
-        ("(b) continuous, t₁ = T", 1.0),
+        ("(a) discrete, $t_1$/$T$ = 0.5", 0.5),
+        ("(b) continuous, $t_1$ = $T$", 1.0),
     ];
     let orders = [2usize, 15];
     let mut csv = Csv::new(
@@ -176,7 +176,7 @@ pub fn figure2(motor: &Motor) -> Result<Figure, PlotError> {
             }
             csv.row(&cells);
         }
-        let t_axis = || Axis::linear("t (ms)", (0.0, period * 1e3)).scaled(1e3);
+        let t_axis = || Axis::linear("time $t$ (ms)", (0.0, period * 1e3)).scaled(1e3);
         let quantities = [
             Quantity::Position,
             Quantity::Velocity,
@@ -233,7 +233,7 @@ pub fn figure2(motor: &Motor) -> Result<Figure, PlotError> {
                     // In the zoom n = 15 crosses the panel many times: thin.
                     let weight = if zoom && *n > 2 { 0.7 } else { 1.0 };
                     p.series.push(Series::line(
-                        Some(&format!("partial sum (8), n = {n}")),
+                        Some(&format!("partial sum (8), $n$ = {n}")),
                         pts,
                         Look::nth(i + 1).weighted(weight),
                     ));
@@ -283,16 +283,16 @@ pub fn figure3(motor: &Motor) -> Result<Figure, PlotError> {
     let mut panels = Vec::new();
     for sigma in [false, true] {
         let title = if sigma {
-            "(b) with σ factors (15)"
+            "(b) with $σ$ factors (15)"
         } else {
-            "(a) without σ factors"
+            "(a) without $σ$ factors"
         };
         let mut p = Panel::new(
             Some(title),
-            Axis::linear("harmonic number k", (0.5, 16.5))
+            Axis::linear("harmonic number $k$", (0.5, 16.5))
                 .with_ticks(8)
                 .integers(),
-            Axis::linear("amplitude d_k / x̂_R", (0.0, 0.5)),
+            Axis::linear("amplitude $d_k$/$x̂_R$", (0.0, 0.5)),
         );
         for (i, &n) in orders.iter().enumerate() {
             let s = built(1.0, n, sigma, motor, NAME)?;
@@ -324,7 +324,7 @@ pub fn figure3(motor: &Motor) -> Result<Figure, PlotError> {
                 ]);
             }
             p.series.push(Series::line(
-                Some(&format!("n = {n}")),
+                Some(&format!("$n$ = {n}")),
                 pts,
                 Look::nth(i).with_marker(MARKERS[i]),
             ));
@@ -415,19 +415,22 @@ pub fn figure4(motor: &Motor) -> Result<Figure, PlotError> {
                 lo = lo.min(-a0);
                 hi = hi.max(a0);
             }
-            let title = format!("{} n = {n}", if col == 0 { "(a)" } else { "(b)" });
+            let title = format!("{} $n$ = {n}", if col == 0 { "(a)" } else { "(b)" });
             let mut p = Panel::new(
                 (row == 0).then_some(title.as_str()),
-                Axis::linear("t (ms)", (0.0, period * 1e3)).scaled(1e3),
+                Axis::linear("time $t$ (ms)", (0.0, period * 1e3)).scaled(1e3),
                 Axis::linear(label, padded(lo, hi, 0.06)).scaled(scale),
             );
             if matches!(q, Quantity::Acceleration) {
                 push_stick_band(&mut p, a0, period);
             }
             p.series
-                .push(Series::line(Some("without σ factors"), c1, Look::nth(0)));
-            p.series
-                .push(Series::line(Some("with σ factors (15)"), c2, Look::nth(1)));
+                .push(Series::line(Some("without $σ$ factors"), c1, Look::nth(0)));
+            p.series.push(Series::line(
+                Some("with $σ$ factors (15)"),
+                c2,
+                Look::nth(1),
+            ));
             p
         })
         .collect();
@@ -475,14 +478,14 @@ pub fn figure5(motor: &Motor) -> Result<Figure, PlotError> {
     let mut panels = Vec::new();
     for sigma in [false, true] {
         let title = if sigma {
-            "(b) with σ factors (15)"
+            "(b) with $σ$ factors (15)"
         } else {
-            "(a) without σ factors"
+            "(a) without $σ$ factors"
         };
         let mut p = Panel::new(
             Some(title),
-            Axis::linear("t (ms)", (0.0, t_end * 1e3)).scaled(1e3),
-            Axis::linear("rod position (µm)", (-1.5, 26.5)).scaled(1e6),
+            Axis::linear("time $t$ (ms)", (0.0, t_end * 1e3)).scaled(1e3),
+            Axis::linear("rod position $x_R$ (µm)", (-1.5, 26.5)).scaled(1e6),
         );
         for (i, (_, n, sk, s)) in signals.iter().filter(|s| s.0 == sigma).enumerate() {
             let period = s.period();
@@ -500,7 +503,7 @@ pub fn figure5(motor: &Motor) -> Result<Figure, PlotError> {
                     Cell::F(x),
                 ]);
             }
-            let label = format!("n = {n}, √κ = {}", short(*sk));
+            let label = format!("$n$ = {n}, √$κ$ = {}", short(*sk));
             p.series.push(Series::line(Some(&label), pts, Look::nth(i)));
         }
         panels.push(p);
@@ -522,7 +525,7 @@ fn short(v: f64) -> String {
 /// The stick band `±a_0`, shaded under the curves.
 pub(crate) fn push_stick_band(p: &mut Panel, a0: f64, period: f64) {
     p.series.push(Series::bands(
-        Some("stick band ±a₀"),
+        Some("stick band ±$a_0$"),
         vec![[(0.0, -a0), (period, a0)]],
         band_look(),
     ));

@@ -16,6 +16,7 @@ use super::layout::fitted;
 use super::style::{Dash, GREY, Look, Marker, PALETTE};
 use super::{Axis, Cell, Csv, Figure, Panel, Plot, PlotError, Preset, Series};
 use crate::indicator::Indicator;
+use crate::symbol::symbol;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -43,7 +44,8 @@ pub struct SweepSpec {
 /// Regimes with a steady state (docs/interface.md, `regime`).
 const STEADY_REGIMES: [&str; 3] = ["stuck", "stick-slip", "slip-slip"];
 
-/// Units of the documented columns, for axis labels.
+/// Units of the documented columns the table of symbols does not name,
+/// for axis labels.
 fn unit(column: &str) -> Option<&'static str> {
     if let Ok(indicator) = column.parse::<Indicator>() {
         return Some(indicator.unit()).filter(|u| *u != "1");
@@ -60,10 +62,37 @@ fn unit(column: &str) -> Option<&'static str> {
     })
 }
 
+/// A column's name as words (another tool's column, not in the table of
+/// symbols): underscores become spaces.
+fn words(column: &str) -> String {
+    column.replace('_', " ")
+}
+
+/// The axis label of a column: description, symbol and unit from the
+/// table of symbols, or the column's name in words and its unit.
 fn axis_label(column: &str) -> String {
+    if let Some(s) = symbol(column) {
+        return s.label();
+    }
     match unit(column) {
-        Some(u) => format!("{column} ({u})"),
-        None => column.to_owned(),
+        Some(u) => format!("{} ({u})", words(column)),
+        None => words(column),
+    }
+}
+
+/// How a series or facet of `column` = `value` is named: "with" or
+/// "without" for a switch, the symbol (or the column in words) and the
+/// value otherwise.
+fn value_label(column: &str, value: &str) -> String {
+    let sym = symbol(column);
+    let what = sym.map_or_else(|| words(column), |s| s.description.to_owned());
+    match value {
+        "true" if !what.is_empty() => format!("with {what}"),
+        "false" if !what.is_empty() => format!("without {what}"),
+        _ => format!(
+            "{} = {value}",
+            sym.map_or_else(|| words(column), |s| s.quantity.to_owned())
+        ),
     }
 }
 
@@ -118,13 +147,13 @@ fn column_index(
     headers: &csv::StringRecord,
     name: &str,
     flag: &str,
-    path: &Path,
+    path: &str,
 ) -> Result<usize, PlotError> {
     headers.iter().position(|h| h == name).ok_or_else(|| {
         let names: Vec<&str> = headers.iter().collect();
         PlotError::Argument(format!(
             "{flag} {name}: no such column in {}; its columns are {}",
-            path.display(),
+            path,
             names.join(", ")
         ))
     })
@@ -132,6 +161,19 @@ fn column_index(
 
 /// Reads the sweep output at `path` and draws it as `spec` says.
 pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure, PlotError> {
+    check_references(spec)?;
+    let file = std::fs::File::open(path)
+        .map_err(|e| PlotError::Argument(format!("{}: {e}", path.display())))?;
+    sweep_figure_from(
+        std::io::BufReader::new(file),
+        &path.display().to_string(),
+        spec,
+        name,
+    )
+}
+
+/// Reference lines are finite, and positive on a log axis.
+fn check_references(spec: &SweepSpec) -> Result<(), PlotError> {
     for (log, flag, refs) in [
         (spec.log_x, "--ref-x", &spec.ref_x),
         (spec.log_y, "--ref-y", &spec.ref_y),
@@ -142,13 +184,22 @@ pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure,
             )));
         }
     }
-    let file = std::fs::File::open(path)
-        .map_err(|e| PlotError::Argument(format!("{}: {e}", path.display())))?;
+    Ok(())
+}
+
+/// Draws the sweep output read from `input` (named `path` in messages)
+/// as `spec` says.
+pub fn sweep_figure_from(
+    input: impl std::io::Read,
+    path: &str,
+    spec: &SweepSpec,
+    name: &str,
+) -> Result<Figure, PlotError> {
+    check_references(spec)?;
     let mut reader = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
-        .from_reader(std::io::BufReader::new(file));
-    let bad_csv =
-        |e: csv::Error| PlotError::Argument(format!("{}: not a sweep CSV: {e}", path.display()));
+        .from_reader(input);
+    let bad_csv = |e: csv::Error| PlotError::Argument(format!("{}: not a sweep CSV: {e}", path));
     let headers = reader.headers().map_err(bad_csv)?.clone();
     let ix = column_index(&headers, &spec.x, "--x", path)?;
     let iy = column_index(&headers, &spec.y, "--y", path)?;
@@ -184,15 +235,14 @@ pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure,
                 Ok(v) if v.is_finite() => Ok(Some(v)),
                 _ => Err(PlotError::Argument(format!(
                     "{}: data row {line}: column {column} = \"{text}\" is not a number",
-                    path.display()
+                    path
                 ))),
             }
         };
         let Some(x) = number(ix, &spec.x)? else {
             return Err(PlotError::Argument(format!(
                 "{}: data row {line}: column {} (--x) is empty",
-                path.display(),
-                spec.x
+                path, spec.x
             )));
         };
         let y = match number(iy, &spec.y)? {
@@ -212,8 +262,7 @@ pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure,
         if spec.log_x && x <= 0.0 {
             return Err(PlotError::Argument(format!(
                 "--log-x: {}: data row {line}: {} = {x} is not positive",
-                path.display(),
-                spec.x
+                path, spec.x
             )));
         }
         rows.push(Row {
@@ -224,10 +273,7 @@ pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure,
         });
     }
     if rows.is_empty() {
-        return Err(PlotError::Argument(format!(
-            "{}: no data rows",
-            path.display()
-        )));
+        return Err(PlotError::Argument(format!("{}: no data rows", path)));
     }
     draw(rows, spec, name, path)
 }
@@ -252,7 +298,7 @@ fn distinct<'a>(values: impl Iterator<Item = &'a str>) -> Vec<String> {
     seen
 }
 
-fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &Path) -> Result<Figure, PlotError> {
+fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &str) -> Result<Figure, PlotError> {
     let facets = distinct(rows.iter().map(|r| r.facet.as_str()));
     let series = distinct(rows.iter().map(|r| r.series.as_str()));
     let mut flags: Vec<Flag> = rows.iter().filter_map(|r| r.y.clone().err()).collect();
@@ -282,12 +328,7 @@ fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &Path) -> Result<Fig
     let bottom = y_axis.range.0;
     let mut csv = Csv::new(
         &[
-            &format!(
-                "Sweep plot of {}: {} against {}.",
-                path.display(),
-                spec.y,
-                spec.x
-            ),
+            &format!("Sweep plot of {}: {} against {}.", path, spec.y, spec.x),
             "status: ok, or why the row has no point (failed; its regime without a steady state, e.g. run-away; no value; off the log axis); such rows are drawn on the bottom edge.",
         ],
         &["facet", "series", "x", "y", "status"],
@@ -308,7 +349,7 @@ fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &Path) -> Result<Fig
     let mut panels = Vec::new();
     let mut points_only = false;
     for facet in &facets {
-        let title = spec.facet.as_ref().map(|f| format!("{f} = {facet}"));
+        let title = spec.facet.as_ref().map(|f| value_label(f, facet));
         let mut panel = Panel::new(title.as_deref(), x_axis.clone(), y_axis.clone());
         for &ry in &spec.ref_y {
             panel.series.push(Series::hline(
@@ -335,8 +376,8 @@ fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &Path) -> Result<Fig
             let repeated = pts.windows(2).any(|w| w[0].0 == w[1].0);
             points_only |= repeated;
             let label = match &spec.series {
-                Some(col) => format!("{col} = {s}"),
-                None => spec.y.clone(),
+                Some(col) => value_label(col, s),
+                None => symbol(&spec.y).map_or_else(|| words(&spec.y), |s| s.quantity.to_owned()),
             };
             let mut look = Look::nth(i);
             if (repeated || pts.len() <= 40) && look.marker == Marker::None {

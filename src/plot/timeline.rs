@@ -254,9 +254,9 @@ pub fn event_timeline(base: &Scene) -> Result<Figure, PlotError> {
     let t_end = periods_a as f64 * period_a;
     let (lo, hi) = min_max(samples.iter().flatten().flat_map(|s| [s.v_rod, s.v_slider]));
     let mut a = Panel::new(
-        Some("(a) n = 5, κ = 0.36, σ: velocities from rest"),
-        Axis::linear("t (ms)", (0.0, t_end * 1e3)).scaled(1e3),
-        Axis::linear("velocity (m/s)", padded(lo, hi, 0.06)),
+        Some("(a) $n$ = 5, $κ$ = 0.36, $σ$: velocities from rest"),
+        Axis::linear("time $t$ (ms)", (0.0, t_end * 1e3)).scaled(1e3),
+        Axis::linear("velocity $v$ (m/s)", padded(lo, hi, 0.06)),
     );
     a.series.push(Series {
         label: Some("rod velocity".to_owned()),
@@ -310,7 +310,7 @@ pub fn event_timeline(base: &Scene) -> Result<Figure, PlotError> {
     if let Some(p) = p99_a {
         let t = p as f64 * period_a;
         a.series.push(Series::line(
-            Some("end of the start-up, p₀.₉₉"),
+            Some("end of the start-up, $p_{0.99}$"),
             vec![(t, -1e3), (t, 1e3)],
             Look::reference(),
         ));
@@ -318,7 +318,7 @@ pub fn event_timeline(base: &Scene) -> Result<Figure, PlotError> {
 
     // (b): raster of modes, one row per period.
     let b = raster(
-        Some("(b) n = 2, √κ = 6, σ: modes, one row per period"),
+        Some("(b) $n$ = 2, √$κ$ = 6, $σ$: modes, one row per period"),
         &tl_b,
         &sig_b,
         periods_b,
@@ -351,11 +351,11 @@ fn raster(
     let mut b = Panel::new(
         title,
         Axis::linear(
-            &format!("time in the period ({unit})"),
+            &format!("time in the period $t$ ({unit})"),
             (0.0, period * scale),
         )
         .scaled(scale),
-        Axis::linear("period p", (0.0, periods as f64)).integers(),
+        Axis::linear(&super::sym("p").label(), (0.0, periods as f64)).integers(),
     );
     for mode in MODES {
         let rects: Vec<[(f64, f64); 2]> = tl
@@ -374,7 +374,7 @@ fn raster(
     }
     if let Some(p) = p99 {
         b.series.push(Series::hline(
-            Some("end of the start-up, p₀.₉₉"),
+            Some("end of the start-up, $p_{0.99}$"),
             p as f64,
             (0.0, period),
             Look::reference(),

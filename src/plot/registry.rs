@@ -1,0 +1,188 @@
+//! Every figure the project draws, in one list: the figures in `plots/`
+//! (the paper's figures 2-9, the stroke scaling law, the event timeline,
+//! the characteristic and the optimiser's two figures), every
+//! `stickslip plot --figure` kind of a scene, and a faceted sweep plot.
+//!
+//! Contract: each [`Entry`] makes its figure from the project's own
+//! inputs (the default scene and motor, the section-7 grid, the default
+//! optimisation) laid out for the preset it is given
+//! ([`Figure::preset`]), so a check that walks [`ALL`] in every
+//! [`Preset`] covers a figure added here without being touched. A figure
+//! added to the project is added here. Inputs shared by several entries
+//! (the section-7 grid, the optimum) are computed once per process.
+
+use super::motion::{self, Row, Span};
+use super::performance::{GridPoint, figures6_7};
+use super::sweep::{SweepSpec, sweep_figure_from};
+use super::{Figure, PlotError, Preset, characteristic, optimize, scaling, signals, timeline};
+use crate::motor::Motor;
+use crate::optimize::map::{self, MapGrid};
+use crate::optimize::{OptimizeTable, Optimum, Overrides, Settings};
+use crate::scene::Scene;
+use crate::signal::SignalSpec;
+use std::sync::OnceLock;
+
+/// One figure of the project.
+#[derive(Debug, Clone, Copy)]
+pub struct Entry {
+    /// The figure's name (its file stem where it is written).
+    pub name: &'static str,
+    /// Makes the figure laid out for a preset.
+    pub make: fn(Preset) -> Result<Figure, PlotError>,
+}
+
+/// Every figure the project draws.
+pub const ALL: &[Entry] = &[
+    entry("fig2_ideal_and_fourier", |_| {
+        signals::figure2(&Motor::default())
+    }),
+    entry("fig3_harmonic_amplitudes", |_| {
+        signals::figure3(&Motor::default())
+    }),
+    entry("fig4_rod_signals", |_| signals::figure4(&Motor::default())),
+    entry("fig5_equal_fmax", |_| signals::figure5(&Motor::default())),
+    entry("fig6_indicators_without_sigma", |_| {
+        Ok(figures6_7(grid()?)?
+            .into_iter()
+            .next()
+            .expect("two figures"))
+    }),
+    entry("fig7_indicators_with_sigma", |_| {
+        Ok(figures6_7(grid()?)?
+            .into_iter()
+            .nth(1)
+            .expect("two figures"))
+    }),
+    entry("fig8_rod_slider_velocity", |_| {
+        motion::figure8(&figure8_scene())
+    }),
+    entry(
+        "fig9_fmax_fallowed",
+        |_| scaling::figure9(&Motor::default()),
+    ),
+    entry("stroke_scaling", |_| {
+        scaling::stroke_scaling(&Scene::default())
+    }),
+    entry("event_timeline", |_| {
+        timeline::event_timeline(&Scene::default())
+    }),
+    entry("characteristic_default", |_| {
+        characteristic::scene_characteristic(&Scene::default(), "characteristic_default")
+    }),
+    entry("optimize_signal", |_| {
+        optimize::signal_figure(optimum()?, "optimize_signal")
+    }),
+    entry("optimize_plane", |_| {
+        let m = map::map(optimum()?, MapGrid::default());
+        optimize::map_figure(&m, "optimize_plane")
+    }),
+    entry("plot_motion", |_| {
+        // `stickslip plot SCENE -o FILE`: its default periods and rows.
+        let spans: Vec<Span> = motion::parse_periods("1,last").map_err(PlotError::Argument)?;
+        motion::motion(
+            &Scene::default(),
+            &spans,
+            &[Row::Velocity, Row::Displacement, Row::Acceleration],
+            "plot_motion",
+        )
+    }),
+    entry("plot_startup", |_| {
+        motion::startup(&Scene::default(), "plot_startup")
+    }),
+    entry("plot_timeline", |_| {
+        timeline::scene_timeline(&Scene::default(), "plot_timeline")
+    }),
+    entry("plot_sweep_faceted", |_| {
+        let spec = SweepSpec {
+            x: "harmonics".into(),
+            y: "v_inf".into(),
+            series: Some("level".into()),
+            facet: Some("sigma".into()),
+            ..SweepSpec::default()
+        };
+        sweep_figure_from(
+            sweep_csv()?.as_bytes(),
+            "section-7 grid",
+            &spec,
+            "plot_sweep_faceted",
+        )
+    }),
+];
+
+/// An entry whose figure is laid out for the preset asked for.
+const fn entry(name: &'static str, make: fn(Preset) -> Result<Figure, PlotError>) -> Entry {
+    Entry { name, make }
+}
+
+impl Entry {
+    /// The figure laid out for `preset`.
+    pub fn figure(&self, preset: Preset) -> Result<Figure, PlotError> {
+        let mut f = (self.make)(preset)?;
+        f.preset = preset;
+        Ok(f)
+    }
+}
+
+/// Figure 8's scene (the paper's caption): n = 2, no sigma factors,
+/// sqrt(kappa) = 1, stroke 25 µm.
+fn figure8_scene() -> Scene {
+    Scene {
+        signal: SignalSpec::fourier(25e-6, 1.0, 2, false),
+        ..Scene::default()
+    }
+}
+
+/// The section-7 grid (`examples/sweeps/section7.toml`): levels
+/// `n sqrt(kappa)` 3 to 15, n = 2..8, with and without sigma factors.
+fn grid() -> Result<&'static [GridPoint], PlotError> {
+    static GRID: OnceLock<Result<Vec<GridPoint>, String>> = OnceLock::new();
+    let grid = GRID.get_or_init(|| {
+        let mut points = Vec::new();
+        for level in [3.0, 6.0, 9.0, 12.0, 15.0] {
+            for n in 2..=8usize {
+                for sigma in [false, true] {
+                    let sqrt_kappa = level / n as f64;
+                    let scene = Scene {
+                        signal: SignalSpec::fourier(25e-6, sqrt_kappa * sqrt_kappa, n, sigma),
+                        ..Scene::default()
+                    };
+                    let report = crate::simulation::run(&scene).map_err(|e| e.to_string())?;
+                    points.push(GridPoint::from_report(level, n, sigma, &report));
+                }
+            }
+        }
+        Ok(points)
+    });
+    grid.as_deref().map_err(|e| PlotError::Data {
+        figure: "section-7 grid".to_owned(),
+        reason: e.clone(),
+    })
+}
+
+/// The section-7 grid as a sweep output.
+fn sweep_csv() -> Result<String, PlotError> {
+    let mut csv = String::from("case,level,harmonics,sigma,v_inf,regime,failure\n");
+    for (i, p) in grid()?.iter().enumerate() {
+        csv.push_str(&format!(
+            "{i},{},{},{},{},,\n",
+            p.level, p.n, p.sigma, p.v_inf
+        ));
+    }
+    Ok(csv)
+}
+
+/// The optimum of the default scene with the default settings (`stickslip
+/// optimize examples/scenes/paper_default.toml`).
+fn optimum() -> Result<&'static Optimum, PlotError> {
+    static OPTIMUM: OnceLock<Result<Optimum, String>> = OnceLock::new();
+    let found = OPTIMUM.get_or_init(|| {
+        let scene = Scene::default();
+        let settings = Settings::resolve(&OptimizeTable::default(), &Overrides::default(), &scene)
+            .map_err(|e| e.to_string())?;
+        crate::optimize::optimize(&scene, &settings).map_err(|e| e.to_string())
+    });
+    found.as_ref().map_err(|e| PlotError::Data {
+        figure: "optimize".to_owned(),
+        reason: e.clone(),
+    })
+}
