@@ -115,8 +115,8 @@ pub fn figure(
         };
         let mut panel = Panel::new(
             Some(&title),
-            Axis::linear("t (ms)", (x.0 * 1e3, x.1 * 1e3)).scaled(1e3),
-            Axis::linear("v_S (m/s)", y),
+            Axis::linear("time $t$ (ms)", (x.0 * 1e3, x.1 * 1e3)).scaled(1e3),
+            Axis::linear("$v_S$ (m/s)", y),
         );
         let exact: Vec<(f64, f64)> = pts.iter().map(|s| (s.0, s.2)).collect();
         // The user's samples as markers on the exact curve, at most
@@ -129,12 +129,12 @@ pub fn figure(
             }
         }
         panel.series.push(Series::line(
-            Some("exact v_S"),
+            Some("exact $v_S$"),
             exact,
             Look::nth(0).weighted(1.4),
         ));
         panel.series.push(Series::points(
-            Some(&format!("{} v_S (samples)", short(&f.file))),
+            Some(&format!("{} $v_S$ (samples)", short(&f.file))),
             user,
             Look::nth_points(1),
         ));
@@ -160,9 +160,9 @@ pub fn figure(
             0.05,
         );
         let mut panel = Panel::new(
-            Some("(b) per-period error of v_p"),
-            Axis::linear("period p", (p_min, p_max.max(p_min + 1.0))).integers(),
-            Axis::linear("v_p,user − v_p (mm/s)", y).scaled(1e3),
+            Some("(b) per-period error of $v_p$"),
+            Axis::linear("period $p$", (p_min, p_max.max(p_min + 1.0))).integers(),
+            Axis::linear("$v_{p,user} − v_p$ (mm/s)", y).scaled(1e3),
         );
         for (i, f) in shown.iter().enumerate() {
             let label = short(&f.file);
@@ -198,14 +198,14 @@ pub fn figure(
         .filter(|(_, e, _)| *e > 0.0)
         .collect();
     if steps.len() >= 2 {
-        let x = super::fitted("step h (s)", steps.iter().map(|s| s.0), true, 0.1);
+        let x = super::fitted("step $h$ (s)", steps.iter().map(|s| s.0), true, 0.1);
         let y_axis = super::fitted(
-            "step-size part of the v∞ error (relative)",
+            "step-size part of the $v_∞$ error (relative)",
             steps.iter().map(|s| s.1),
             true,
             0.15,
         );
-        let mut panel = Panel::new(Some("(c) v∞ error against the step"), x.clone(), y_axis);
+        let mut panel = Panel::new(Some("(c) $v_∞$ error against the step"), x.clone(), y_axis);
         for (h, e, file) in &steps {
             csv.row(&[
                 Cell::S("c"),
