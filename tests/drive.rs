@@ -8,7 +8,7 @@
 //! m_s^(-1/2)` at fixed `kappa`; central differences of the library's own
 //! `v_inf`; the chain rule between the two held quantities.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 use stickslip::{Drive, Motor, Outcome, Scene, SignalSpec};
 
@@ -134,6 +134,17 @@ fn f0_by_mass(base: &str) -> Vec<(f64, f64)> {
     .unwrap();
     let out = temp(&format!("rows_{}.csv", base.len()));
     let _ = std::fs::remove_file(&out);
+    let (header, rows) = sweep_rows(&sweep, &out);
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (m, f) = (col("slider_mass"), col("f0"));
+    rows.iter()
+        .map(|cells| (cells[m].parse().unwrap(), cells[f].parse().unwrap()))
+        .collect()
+}
+
+/// Runs the sweep file `sweep` into `out` and returns its header and rows
+/// (CSV cells; the `#` lines skipped).
+fn sweep_rows(sweep: &Path, out: &Path) -> (Vec<String>, Vec<Vec<String>>) {
     let (ok, _, err) = stickslip(&[
         "sweep",
         sweep.to_str().unwrap(),
@@ -143,17 +154,13 @@ fn f0_by_mass(base: &str) -> Vec<(f64, f64)> {
         out.to_str().unwrap(),
     ]);
     assert!(ok, "{err}");
-    let text = std::fs::read_to_string(&out).unwrap();
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
-    let (m, f) = (col("slider_mass"), col("f0"));
-    lines
-        .map(|l| {
-            let cells: Vec<&str> = l.split(',').collect();
-            (cells[m].parse().unwrap(), cells[f].parse().unwrap())
-        })
-        .collect()
+    let text = std::fs::read_to_string(out).unwrap();
+    let mut lines = text
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split(',').map(str::to_owned).collect::<Vec<String>>());
+    let header = lines.next().unwrap();
+    (header, lines.collect())
 }
 
 #[test]
@@ -186,25 +193,11 @@ fn a_frequency_axis_replaces_the_kappa_of_the_base() {
     .unwrap();
     let out = temp("frequency_axis.csv");
     let _ = std::fs::remove_file(&out);
-    let (ok, _, err) = stickslip(&[
-        "sweep",
-        sweep.to_str().unwrap(),
-        "-q",
-        "--no-timing",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert!(ok, "{err}");
-    let text = std::fs::read_to_string(&out).unwrap();
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let (header, rows) = sweep_rows(&sweep, &out);
     let (a, f) = (
         header.iter().position(|h| *h == "frequency").unwrap(),
         header.iter().position(|h| *h == "f0").unwrap(),
     );
-    let rows: Vec<Vec<String>> = lines
-        .map(|l| l.split(',').map(str::to_owned).collect())
-        .collect();
     assert_eq!(rows.len(), 2);
     for row in rows {
         assert_eq!(row[a], row[f]);

@@ -339,7 +339,7 @@ fn a_refused_merge_leaves_every_input_intact() {
 /// has that many cases) at once, and a real gap of ten million cases is
 /// counted, not listed.
 #[test]
-fn issue_16_merge_of_huge_case_indices_does_not_allocate() {
+fn merge_refuses_huge_case_indices_without_allocating_by_index() {
     let d = dir("huge_case");
     let file = write(
         &d,
@@ -405,7 +405,7 @@ fn issue_16_merge_of_huge_case_indices_does_not_allocate() {
 /// case: loading it and running a shard of five cases fits in 1 GiB of
 /// address space and a few seconds.
 #[test]
-fn issue_16_a_ten_million_case_grid_runs_a_shard_in_bounded_memory() {
+fn a_ten_million_case_grid_runs_a_shard_in_bounded_memory() {
     let d = dir("big_grid");
     let list = |n: usize, f: &dyn Fn(usize) -> f64| {
         (0..n)
@@ -455,7 +455,7 @@ fn issue_16_a_ten_million_case_grid_runs_a_shard_in_bounded_memory() {
 /// while the first runs; the first completes every row. A lock file left
 /// by a process that is gone does not block.
 #[test]
-fn issue_16_two_sweeps_on_one_output_refuse_the_second() {
+fn a_second_sweep_on_the_same_output_is_refused_while_the_first_runs() {
     let d = dir("two_writers");
     let file = write(&d, "slow.toml", SLOW);
     let out = d.join("out.csv");
@@ -496,7 +496,7 @@ fn issue_16_two_sweeps_on_one_output_refuse_the_second() {
 /// of case 0 has another level"). Values read back bit-identical, so the
 /// rerun keeps the row.
 #[test]
-fn issue_16_a_jsonl_sweep_resumes_from_its_own_output() {
+fn a_jsonl_sweep_resumes_from_its_own_output() {
     let d = dir("jsonl_resume");
     let kappa = 15.270401784289755_f64;
     let file = write(
@@ -518,7 +518,7 @@ fn issue_16_a_jsonl_sweep_resumes_from_its_own_output() {
 /// Merge copied NaN cells. A cell a sweep cannot write is
 /// refused, naming the file, line and column; nothing is written.
 #[test]
-fn issue_16_merge_refuses_nan_cells() {
+fn merge_refuses_nan_cells() {
     let d = dir("nan");
     let file = write(&d, "small.toml", SMALL);
     let (csv, jsonl) = (d.join("a.csv"), d.join("a.jsonl"));
@@ -589,7 +589,7 @@ fn issue_16_merge_refuses_nan_cells() {
 /// in-process several times with different `-j` (a global pool can be
 /// built only once).
 #[test]
-fn issue_16_jobs_beyond_the_cases_and_cpus_do_not_hang() {
+fn jobs_beyond_the_cases_and_cpus_do_not_hang() {
     let d = dir("jobs");
     let file = write(
         &d,

@@ -10,7 +10,7 @@
 
 use super::{Failure, SceneOptions, Streams, refuse_outputs, write_out};
 use crate::characteristic::{self, LoadAxis, Options, table};
-use crate::plot::{Format, Preset};
+use crate::plot::Preset;
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
 
@@ -92,21 +92,10 @@ fn check_outputs(args: &CharacteristicArgs) -> Result<(), Failure> {
         .map(PathBuf::as_path)
         .collect();
     refuse_outputs(&outputs, &inputs)?;
-    if let Some(figure) = &args.figure {
-        Format::of(figure).map_err(|e| e.to_string())?;
-        let dir = match figure.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d.to_owned(),
-            _ => PathBuf::from("."),
-        };
-        if !dir.is_dir() {
-            return Err(format!(
-                "--figure {}: the directory {} does not exist",
-                figure.display(),
-                dir.display()
-            ));
-        }
+    match &args.figure {
+        Some(figure) => super::check_figure_path("--figure", figure),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 pub(crate) fn characteristic(

@@ -6,7 +6,7 @@
 use super::{Streams, refuse_outputs};
 use crate::compare::read::{LengthUnit, ReadOptions, TimeUnit};
 use crate::compare::{self, CompareOptions, Metric};
-use crate::plot::{Format, Preset};
+use crate::plot::Preset;
 use clap::Args;
 use std::path::{Path, PathBuf};
 
@@ -116,18 +116,7 @@ fn check_figure(args: &CompareArgs) -> Result<(), String> {
     let Some(figure) = &args.figure else {
         return Ok(());
     };
-    Format::of(figure).map_err(|e| e.to_string().replacen("-o ", "--figure ", 1))?;
-    let dir = match figure.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_owned(),
-        _ => PathBuf::from("."),
-    };
-    if !dir.is_dir() {
-        return Err(format!(
-            "--figure {}: the directory {} does not exist",
-            figure.display(),
-            dir.display()
-        ));
-    }
+    super::check_figure_path("--figure", figure)?;
     let data = crate::plot::data_path(figure);
     let mut inputs: Vec<&Path> = vec![args.scene.as_path()];
     inputs.extend(args.data.iter().map(PathBuf::as_path));

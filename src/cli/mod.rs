@@ -295,6 +295,25 @@ pub(crate) fn refuse_output_over_input(output: &Path, inputs: &[&Path]) -> Resul
 /// Refuses every output that is one of `inputs`
 /// ([`refuse_output_over_input`]) or names the same file as an earlier
 /// output. Call it before any work is done.
+/// Checks that a figure named by `flag` can be written: its extension picks
+/// a format (`.svg`, `.pdf`, `.png`) and its directory exists.
+pub(crate) fn check_figure_path(flag: &str, figure: &Path) -> Result<(), Failure> {
+    crate::plot::Format::of(figure)
+        .map_err(|e| e.to_string().replacen("-o ", &format!("{flag} "), 1))?;
+    let dir = match figure.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if !dir.is_dir() {
+        return Err(format!(
+            "{flag} {}: the directory {} does not exist",
+            figure.display(),
+            dir.display()
+        ));
+    }
+    Ok(())
+}
+
 pub(crate) fn refuse_outputs(outputs: &[&Path], inputs: &[&Path]) -> Result<(), Failure> {
     for (i, output) in outputs.iter().enumerate() {
         refuse_output_over_input(output, inputs)?;

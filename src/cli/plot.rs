@@ -14,7 +14,7 @@ use crate::plot::export::DPI_RANGE;
 use crate::plot::motion::{self, Row};
 use crate::plot::style::MIN_FONT_PT;
 use crate::plot::sweep::{SweepSpec, sweep_figure};
-use crate::plot::{Figure, Format, Preset, Style};
+use crate::plot::{Figure, Preset, Style};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
 
@@ -143,18 +143,7 @@ fn style(args: &PlotArgs, default: Preset) -> Result<Style, Failure> {
 
 /// Checks the output before any work: format, directory, not an input.
 fn check_output(args: &PlotArgs) -> Result<(), Failure> {
-    Format::of(&args.output).map_err(|e| e.to_string())?;
-    let dir = match args.output.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_owned(),
-        _ => PathBuf::from("."),
-    };
-    if !dir.is_dir() {
-        return Err(format!(
-            "-o {}: the directory {} does not exist",
-            args.output.display(),
-            dir.display()
-        ));
-    }
+    super::check_figure_path("-o", &args.output)?;
     let inputs: [&Path; 1] = [&args.input];
     refuse_output_over_input(&args.output, &inputs)?;
     refuse_output_over_input(&crate::plot::data_path(&args.output), &inputs)?;
