@@ -2,7 +2,7 @@
 //! that every output reads. [`Indicator::ALL`] fixes the order; the name and
 //! meaning are here, the symbol and unit in the table of symbols
 //! (`src/symbol.rs`); the value and its error estimate come from
-//! `RunReport::value` and `RunReport::error` (`src/simulation.rs`). The
+//! `RunReport::value` and `RunReport::error` (`src/simulation/outcome.rs`). The
 //! text summary, `run --json`, `check`, sweep columns and sweep figures are
 //! loops over [`Indicator::ALL`], so they cannot disagree.
 //!
@@ -109,7 +109,7 @@ impl Indicator {
                 "start-up time T p_0.99: the first period whose mean velocity reaches 99 % of v_inf"
             }
             Indicator::Smoothness => {
-                "steady-state smoothness zeta (16): mean velocity over its RMS deviation"
+                "steady-state smoothness zeta (16): mean velocity over the slider velocity's range in the period, |v_p| / (max v_S - min v_S)"
             }
             Indicator::Durability => {
                 "steady-state durability delta (18): distance moved per friction work"

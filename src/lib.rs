@@ -82,6 +82,7 @@ mod observer;
 pub mod optimize;
 mod output;
 pub mod plot;
+mod plural;
 mod power;
 mod provenance;
 mod report;

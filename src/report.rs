@@ -31,6 +31,21 @@ pub fn format_with_error(value: f64, err: Option<f64>) -> String {
     if !value.is_finite() {
         return "none".to_owned();
     }
+    let text = rounded(value, err);
+    match err {
+        Some(e) if e > 0.0 => format!("{text} ± {e:.1e}"),
+        Some(_) => format!("{text} (exact)"),
+        None => text,
+    }
+}
+
+/// `value` rounded to the digits its absolute error `err` supports (15
+/// significant digits without an estimate or with an error of 0), without
+/// the error: for a number whose resolution is stated beside it.
+pub(crate) fn rounded(value: f64, err: Option<f64>) -> String {
+    if !value.is_finite() {
+        return "none".to_owned();
+    }
     let digits = match err {
         Some(e) if e > 0.0 && value != 0.0 => {
             let d = (value.abs() / e).log10().floor() as i32 + 1;
@@ -43,18 +58,13 @@ pub fn format_with_error(value: f64, err: Option<f64>) -> String {
     } else {
         value.abs().log10().floor() as i32
     };
-    let text = if value == 0.0 {
+    if value == 0.0 {
         "0".to_owned()
     } else if (-4..6).contains(&magnitude) {
         let decimals = (digits - 1 - magnitude).max(0) as usize;
         format!("{value:.decimals$}")
     } else {
         format!("{:.*e}", (digits - 1) as usize, value)
-    };
-    match err {
-        Some(e) if e > 0.0 => format!("{text} ± {e:.1e}"),
-        Some(_) => format!("{text} (exact)"),
-        None => text,
     }
 }
 
@@ -384,8 +394,8 @@ pub fn to_text(outcome: &Outcome) -> String {
             let _ = writeln!(
                 out,
                 "outcome: not converged: the start-up from rest did not establish its limit \
-                 within {} periods (run.max_periods); v_inf is not reported",
-                state.periods_simulated,
+                 within {} (run.max_periods); v_inf is not reported",
+                crate::plural::count(state.periods_simulated, "period", "periods"),
             );
             let bound =
                 |b: Option<f64>| b.map_or("unknown".to_owned(), |v| format_with_error(v, None));
@@ -481,8 +491,8 @@ fn steady_text(r: &RunReport) -> String {
             .map_or("not established".to_owned(), |v| format_with_error(v, None));
         let _ = writeln!(
             out,
-            "cross-check: the start-up from rest ({} periods) gives v_inf = {tr} m/s",
-            check.periods
+            "cross-check: the start-up from rest ({}) gives v_inf = {tr} m/s",
+            crate::plural::count(check.periods, "period", "periods")
         );
         match (check.agrees(), check.difference, check.tolerance) {
             (Some(true), Some(d), Some(t)) => {
@@ -536,8 +546,8 @@ fn steady_text(r: &RunReport) -> String {
     let ev = r.events();
     let _ = writeln!(
         out,
-        "events over {} periods from rest: {} stick->slip, {} slip->stick, {} reversal, {} grazing, {} jump",
-        r.startup_span(),
+        "events over {} from rest: {} stick->slip, {} slip->stick, {} reversal, {} grazing, {} jump",
+        crate::plural::count(r.startup_span(), "period", "periods"),
         ev.stick_to_slip,
         ev.slip_to_stick,
         ev.reversal,

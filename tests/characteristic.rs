@@ -895,3 +895,61 @@ fn a_drive_without_sliding_friction_has_a_complete_characteristic_in_bounded_run
     // start-up that runs to run.max_periods.
     assert_eq!(n["not_converged"], 0, "{n}");
 }
+
+/// Significant digits of a decimal number as printed (`0.0358685` has 6).
+fn significant_digits(number: &str) -> usize {
+    let mantissa = number.split(['e', 'E']).next().unwrap_or(number);
+    let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+    digits.trim_start_matches('0').len()
+}
+
+/// The place value of a printed number's last digit (`0.0358` -> 1e-4,
+/// `1.25e-3` -> 1e-5).
+fn last_digit_place(number: &str) -> f64 {
+    let mut parts = number.split(['e', 'E']);
+    let mantissa = parts.next().unwrap_or(number);
+    let exponent: i32 = parts.next().map_or(0, |e| e.parse().unwrap());
+    let decimals = mantissa.split('.').nth(1).map_or(0, str::len) as i32;
+    10f64.powi(exponent - decimals)
+}
+
+#[test]
+fn the_summary_prints_no_digit_its_estimates_do_not_resolve() {
+    // Every `VALUE ± ERROR` of the summary and the datasheet block stops
+    // at the error's first digit (format_with_error): no printed digit is
+    // worth less than a tenth of the error. No number shows more than the
+    // 15 significant digits of a double computed through a few operations.
+    let o = stickslip(&["characteristic", "examples/scenes/paper_default.toml"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let summary: Vec<&str> = text.lines().take_while(|l| !l.contains("F (N)")).collect();
+    assert!(summary.iter().any(|l| l.starts_with("stall force")));
+    let mut with_error = 0;
+    for line in &summary {
+        let words: Vec<&str> = line
+            .split_whitespace()
+            .map(|w| w.trim_matches(|c: char| c == ',' || c == '(' || c == ')'))
+            .collect();
+        for (i, w) in words.iter().enumerate() {
+            if w.parse::<f64>().is_ok() && w.chars().any(|c| c.is_ascii_digit()) {
+                assert!(significant_digits(w) <= 15, "{w} in: {line}");
+            }
+            if *w == "±" {
+                let error: f64 = words[i + 1].parse().unwrap();
+                assert!(
+                    last_digit_place(words[i - 1]) >= error / 10.0,
+                    "{} ± {error} shows digits below the error: {line}",
+                    words[i - 1]
+                );
+                with_error += 1;
+            }
+        }
+    }
+    // No-load speed, stall force and its v_inf, the largest power and its
+    // v_inf, two curve ends, four datasheet entries.
+    assert!(
+        with_error >= 11,
+        "{with_error} estimates in:\n{}",
+        summary.join("\n")
+    );
+}

@@ -1,4 +1,4 @@
-//! Sweeps (`src/sweep.rs`): sharding and merging, rerun skipping, the
+//! Sweeps (`src/sweep/`): sharding and merging, rerun skipping, the
 //! `level` axis, case order, and bad sweep files. Small grids of the
 //! paper's motor, so that the whole file runs in seconds.
 

@@ -37,6 +37,26 @@ pub struct MaxPower {
     pub grid: Vec<Evaluation>,
 }
 
+/// Relative tolerance of Brent's search for the load of the largest
+/// power.
+const LOAD_TOLERANCE: f64 = 1e-7;
+
+impl MaxPower {
+    /// Relative resolution of the load of the maximum, [`MaxPower::at`]:
+    /// Brent's tolerance, or, where larger, the square root of the
+    /// power's relative error, since near a maximum `P(F)` changes by
+    /// `P'' dF^2 / 2` and values that close cannot be told apart (with the
+    /// curvature scale `F^2 |P''| / P` of order one, as for the
+    /// characteristic's near-parabolic `F v_inf(F)`).
+    pub fn load_resolution(&self) -> f64 {
+        let relative = self
+            .error
+            .filter(|_| self.power != 0.0)
+            .map_or(0.0, |e| (e / self.power).abs());
+        LOAD_TOLERANCE.max(relative.sqrt())
+    }
+}
+
 /// `-F v_inf(F)`.
 struct NegativePower<'a> {
     ev: &'a Evaluator,
@@ -103,7 +123,7 @@ pub(super) fn find(
         ev,
         failure: &failure,
     };
-    let solver = BrentOpt::new(a, b).set_tolerance(1e-7, 0.0);
+    let solver = BrentOpt::new(a, b).set_tolerance(LOAD_TOLERANCE, 0.0);
     let result = Executor::new(cost, solver)
         .configure(|state| state.max_iters(200))
         .run();

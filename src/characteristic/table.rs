@@ -12,7 +12,7 @@ use super::datasheet::Datasheet;
 use super::domain::Limit;
 use super::{Characteristic, LoadAxis};
 use crate::provenance;
-use crate::report::format_with_error;
+use crate::report::{format_with_error, rounded};
 use crate::scene::Scene;
 use crate::scene::SceneFile;
 use serde_json::{Value, json};
@@ -221,6 +221,11 @@ fn value_or_none(x: Option<f64>, unit: &str) -> String {
         .map_or("none".to_owned(), |v| format!("{} {unit}", fmt(v)))
 }
 
+/// The width of the stall force's bracket (N): the force lies inside it.
+fn stall_width(s: &super::Stall) -> f64 {
+    (s.bracket.1 - s.bracket.0).abs()
+}
+
 /// A value without an error estimate: the shortest digits that read back
 /// to the same double.
 fn fmt(x: f64) -> String {
@@ -267,11 +272,9 @@ pub(crate) fn to_text(c: &Characteristic) -> String {
         &mut t,
         "stall force",
         format!(
-            "{} N ({}; bracket [{}, {}] N, relative width {:.1e}; v_inf there {} m/s)",
-            fmt(s.force),
+            "{} N ({}; bracketed to a relative width of {:.1e}; v_inf there {} m/s)",
+            format_with_error(s.force, Some(stall_width(s))),
             s.kind.name(),
-            fmt(s.bracket.0),
-            fmt(s.bracket.1),
             s.relative_width(),
             format_with_error(s.at.v_inf.unwrap_or(0.0), s.at.error)
         ),
@@ -297,10 +300,11 @@ pub(crate) fn to_text(c: &Characteristic) -> String {
         "max output power",
         match &c.max_power {
             Some(p) => format!(
-                "{} W at F = {} N, v_inf = {} m/s",
+                "{} W at F = {} N (located to {:.0e} relative), v_inf = {} m/s",
                 format_with_error(p.power, p.error),
-                fmt(p.at.load),
-                fmt(p.at.v_inf.unwrap_or(0.0))
+                rounded(p.at.load, Some(p.at.load.abs() * p.load_resolution())),
+                p.load_resolution(),
+                format_with_error(p.at.v_inf.unwrap_or(0.0), p.at.error)
             ),
             None => "none (no drive)".to_owned(),
         },
@@ -310,11 +314,11 @@ pub(crate) fn to_text(c: &Characteristic) -> String {
             if l.first_unsteady.is_unsettled() {
                 format!(
                     "{} N (at {} N not converged within run.max_periods)",
-                    fmt(l.load()),
-                    fmt(l.first_unsteady.load)
+                    format_with_error(l.load(), Some(l.width())),
+                    rounded(l.first_unsteady.load, Some(l.width()))
                 )
             } else {
-                format!("{} N", fmt(l.load()))
+                format!("{} N", format_with_error(l.load(), Some(l.width())))
             }
         })
     };
@@ -344,20 +348,34 @@ pub(crate) fn to_text(c: &Characteristic) -> String {
             &mut t,
             "start-up force",
             format!(
-                "initial {} N ({}), largest {} N in period {} ({}) of {} periods",
-                fmt(tr.initial_force),
+                "initial {} N ({}), largest {} N in period {} ({}) of {}",
+                rounded(tr.initial_force, None),
                 ratio(tr.initial_force, s.force)
                     .map_or("-".to_owned(), |r| format!("{r:.3} x stall")),
-                fmt(tr.max_force),
+                rounded(tr.max_force, None),
                 tr.max_period,
                 ratio(tr.max_force, s.force).map_or("-".to_owned(), |r| format!("{r:.3} x stall")),
-                tr.periods
+                crate::plural::count(tr.periods, "period", "periods")
             ),
         );
     }
     let _ = writeln!(t, "\ndatasheet");
     for e in c.datasheet.entries() {
-        let _ = writeln!(t, "  {:<20}{}", e.key, value_or_none(e.value, e.unit));
+        // Each entry to the digits its source resolves: the no-load run's
+        // estimate, the stall bracket, the power's estimate; the holding
+        // force is the product of two inputs.
+        let error = match e.key {
+            "max_speed" => c.no_load.error,
+            "stall_force" => Some(stall_width(&c.stall)),
+            "recommended_load" => Some(stall_width(&c.stall) / 2.0),
+            "max_output_power" => c.max_power.as_ref().and_then(|p| p.error),
+            _ => None,
+        };
+        let shown = match (e.value.filter(|v| v.is_finite()), error) {
+            (Some(v), Some(err)) => format!("{} {}", format_with_error(v, Some(err)), e.unit),
+            _ => value_or_none(e.value, e.unit),
+        };
+        let _ = writeln!(t, "  {:<20}{shown}", e.key);
     }
     let _ = writeln!(t);
     let incline = c.axis == LoadAxis::Incline;

@@ -511,12 +511,15 @@ impl PeriodEngine for FixedStepEngine<'_> {
         self.contact.tol_v
     }
 
-    /// The velocity error the grid introduced in the last period, `sum h
-    /// |Delta a|` over its mode changes (see [`FixedStepEngine`]).
+    /// The scheme's period map has whole bands of fixed points in
+    /// slip-slip (its derivative is exactly 1 there): the start-up from
+    /// rest decides which one is the steady state.
     fn steady_state_from_transient(&self) -> bool {
         true
     }
 
+    /// The velocity error the grid introduced in the last period, `sum h
+    /// |Delta a|` over its mode changes (see [`FixedStepEngine`]).
     fn last_velocity_uncertainty(&self) -> Option<f64> {
         Some(self.last_uncertainty)
     }

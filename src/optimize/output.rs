@@ -18,6 +18,7 @@ use super::params::Shape;
 use super::search::HistoryPoint;
 use crate::error::Error;
 use crate::indicator::Indicator;
+use crate::plural::count;
 use crate::report::{self, format_with_error};
 use crate::scene::Scene;
 use crate::signal::SignalSpec;
@@ -389,12 +390,16 @@ pub(crate) fn to_text(optimum: &Optimum, written: &Written, timing: Option<Durat
     let search = &optimum.search;
     let _ = write!(
         t,
-        "search: {} global points, {} local refinements, {} local optima found, {} runs, {} gradients",
-        search.samples,
-        search.refinements.len(),
-        search.local_optima,
-        search.evaluations,
-        search.gradients
+        "search: {}, {}, {} found, {}, {}",
+        count(search.samples, "global point", "global points"),
+        count(
+            search.refinements.len(),
+            "local refinement",
+            "local refinements"
+        ),
+        count(search.local_optima, "local optimum", "local optima"),
+        count(search.evaluations, "run", "runs"),
+        count(search.gradients, "gradient", "gradients")
     );
     if let Some(time) = timing {
         let _ = write!(t, ", {:.3} s", time.as_secs_f64());
