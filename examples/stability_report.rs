@@ -6,7 +6,7 @@
 
 use std::time::Instant;
 use stickslip::Scene;
-#[path = "../tests/support/stability.rs"]
+#[path = "../tests/common/stability.rs"]
 mod stability;
 use stability::{catalogue, period_cost, run_case};
 

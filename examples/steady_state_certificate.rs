@@ -23,7 +23,7 @@
 //! alone). Most of its time goes to the optimisations, whose every run is
 //! certified.
 
-#[path = "../tests/support/steady_state_certificate.rs"]
+#[path = "../tests/common/steady_state_certificate.rs"]
 mod cases;
 
 use cases::{Tally, Verdict};

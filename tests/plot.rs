@@ -1,7 +1,7 @@
 //! Figures (`src/plot/`): the same inputs give the same bytes, every figure
 //! is written with its CSV beside it, and the CSV is rectangular.
 
-#[path = "support/grid.rs"]
+#[path = "common/grid.rs"]
 mod grid;
 
 use grid::grid;

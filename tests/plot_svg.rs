@@ -5,7 +5,7 @@
 //! marker), and bands (which have neither) differ in lightness, so every
 //! figure reads in greyscale; the program version is in the metadata.
 
-#[path = "support/grid.rs"]
+#[path = "common/grid.rs"]
 mod grid;
 
 use grid::grid;

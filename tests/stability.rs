@@ -2,7 +2,7 @@
 //! its check: closed forms, exact scaling laws, symmetries, run-away
 //! detection, constructed grazing and a 1e7-period run without drift.
 
-#[path = "support/stability.rs"]
+#[path = "common/stability.rs"]
 mod stability;
 use stability::{catalogue, run_case};
 

@@ -16,13 +16,13 @@
 //! case whose motion from rest repeats no state within `run.max_periods`
 //! fails (its expected value is missing).
 //!
-//! The cases are in `tests/support/steady_state_certificate.rs`;
+//! The cases are in `tests/common/steady_state_certificate.rs`;
 //! `cargo run --release --example steady_state_certificate` runs all 36
 //! optimisations and 1000 random scenes and prints the counts. This file
 //! checks the 36 optimisations, 150 scenes and the pair of orbits next to a
 //! jump of the map: about 15 s on 2 cores.
 
-#[path = "support/steady_state_certificate.rs"]
+#[path = "common/steady_state_certificate.rs"]
 mod cases;
 
 use cases::{OptimumCase, Tally, Verdict};

@@ -1,4 +1,9 @@
-//! Helpers shared by the integration tests.
+//! Helpers shared by the integration tests, the one folder of test
+//! helpers. `mod common;` brings in this file and its modules; the case
+//! catalogues beside it (`grid.rs`: the section-7 reference grid,
+//! `stability.rs`: the stress cases, `steady_state_certificate.rs`: the
+//! certificate's cases) are included by path where used, by tests and by
+//! the examples that report on the same cases.
 #![allow(dead_code)]
 
 pub mod ideal_load;
