@@ -492,11 +492,12 @@ fn short(x: f64) -> String {
     format!("{x:.digits$}")
 }
 
-/// `v_inf` over the slider's velocity: long dashes in a colour of its own.
+/// `v_inf` over the slider's velocity: long dashes in orange, which no
+/// curve of the figure has.
 fn v_inf_look() -> Look {
     Look {
         weight: 1.0,
-        ..Look::line(PALETTE[2], Dash::LongDash)
+        ..Look::line(PALETTE[5], Dash::LongDash)
     }
 }
 
