@@ -58,6 +58,17 @@ fn a_scene_plot_writes_the_figure_and_its_data_the_same_twice() {
     assert!(stdout.contains("motion.svg") && stdout.contains("motion.svg.csv"));
     let first = std::fs::read(&out).unwrap();
     let csv = std::fs::read_to_string(d.join("motion.svg.csv")).unwrap();
+    // The summary prints the caption the CSV holds, line for line.
+    let printed: Vec<&str> = stdout
+        .lines()
+        .filter_map(|l| l.strip_prefix("caption: "))
+        .collect();
+    let stored: Vec<&str> = csv
+        .lines()
+        .filter_map(|l| l.strip_prefix("# caption: "))
+        .collect();
+    assert!(!printed.is_empty(), "{stdout}");
+    assert_eq!(printed, stored);
     for kind in ["stick_to_slip", "slip_to_stick"] {
         assert!(
             csv.contains(&format!(",event,0,{kind},")),

@@ -7,7 +7,9 @@
 //! Every argument is checked before anything runs or is written: the
 //! output's format, that its directory exists, that neither the figure
 //! nor its CSV would overwrite the input, the sizes, and (for a sweep) the
-//! columns; a failure is one line and creates nothing.
+//! columns; a failure is one line and creates nothing. The summary names
+//! the files written and prints the figure's caption text (`caption:`
+//! lines, the same as the CSV's `# caption:` lines).
 
 use super::{Failure, SceneOptions, Streams, refuse_output_over_input, write_out};
 use crate::plot::export::DPI_RANGE;
@@ -252,8 +254,11 @@ pub(crate) fn plot(args: PlotArgs, streams: &mut Streams<'_>) -> Result<(), Fail
     let [path, csv] = figure
         .write(&args.output, &style, args.dpi)
         .map_err(|e| e.to_string())?;
-    write_out(
-        streams,
-        &format!("wrote {} and {}\n", path.display(), csv.display()),
-    )
+    // The caption's text (also the CSV's `# caption:` lines), for the
+    // figure's caption in the paper.
+    let mut summary = format!("wrote {} and {}\n", path.display(), csv.display());
+    for note in &figure.plot.notes {
+        summary.push_str(&format!("caption: {}\n", crate::plot::visible(note)));
+    }
+    write_out(streams, &summary)
 }

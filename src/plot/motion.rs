@@ -10,6 +10,16 @@
 //! period (`last`) starts from the steady state's boundary velocity. A
 //! scene without a steady state has no `last` period: asking for it is an
 //! error naming the outcome, the numbered periods still plot.
+//!
+//! The acceleration row is drawn on the stick band's scale: centred on
+//! `g_t`, it spans the rod's acceleration but at most [`BAND_SPAN`]
+//! half-widths `a_0` of the band `a_0^- … a_0^+` on either side (the
+//! rod's larger accelerations leave the panel; their range is in the
+//! caption). The slider's acceleration always lies in the band (the rod's
+//! in stick, `±a_d + g_t` in slip, `a_d <= a_0`), so it is drawn whole.
+//! `v_inf` is drawn over the curves of the steady column. Columns carry
+//! panel letters only when there are several; the start-up runs past
+//! `p_0.99` ([`startup_end`]) so that its mark lies inside the frame.
 
 use super::series::Kind;
 use super::signals::band_look;
@@ -25,6 +35,9 @@ use crate::scene::Scene;
 use crate::signal::Signal;
 use crate::simulation::{self, Outcome};
 
+mod startup;
+pub use startup::{startup, startup_end};
+
 /// Which periods a column of the figure shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Span {
@@ -32,6 +45,34 @@ pub enum Span {
     Periods(u64, u64),
     /// One period of the periodic steady state.
     Steady,
+}
+
+/// The acceleration row spans at most this many half-widths `a_0` of the
+/// stick band on either side of its centre `g_t`.
+pub const BAND_SPAN: f64 = 3.0;
+
+/// The acceleration row's range for `motor` and the rod's accelerations
+/// `rod` (m/s²): centred on `g_t`, wide enough for the rod's
+/// accelerations (6 % padded) and at least 1.25 band half-widths, at
+/// most [`BAND_SPAN`] of them. Without a band (`a_0 = 0`) it spans the
+/// rod's accelerations.
+pub fn band_range(motor: &crate::motor::Motor, rod: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    let g = motor.g_t();
+    let reach = rod
+        .into_iter()
+        .filter(|a| a.is_finite())
+        .map(|a| (a - g).abs())
+        .fold(0.0, f64::max)
+        * 1.06;
+    let a_0 = motor.a_0();
+    let half = if a_0 > 0.0 {
+        reach.clamp(1.25 * a_0, BAND_SPAN * a_0)
+    } else if reach > 0.0 {
+        reach
+    } else {
+        1.0
+    };
+    (g - half, g + half)
 }
 
 /// The most periods a numbered span may reach (the start-up is simulated
@@ -113,6 +154,8 @@ impl Observer for Record {
 /// (s) at which the span starts.
 struct Motion {
     label: String,
+    /// The steady-state period.
+    steady: bool,
     segments: Vec<Segment>,
     events: Vec<Event>,
     first: u64,
@@ -151,6 +194,7 @@ fn record(
             };
             Ok(Motion {
                 label,
+                steady: false,
                 segments: rec.segments,
                 events: rec.events,
                 first: a,
@@ -173,7 +217,8 @@ fn record(
             };
             engine.run_period(2, start, &mut rec).map_err(sim)?;
             Ok(Motion {
-                label: "steady state, $p$\u{a0}→\u{a0}∞".to_owned(),
+                label: "$p$\u{a0}→\u{a0}∞".to_owned(),
+                steady: true,
                 segments: rec.segments,
                 events: rec.events,
                 first: 2,
@@ -253,8 +298,11 @@ pub fn motion(
         ],
     );
     let mut columns: Vec<Vec<Panel>> = Vec::new();
+    let mut rod_accelerations = (f64::INFINITY, f64::NEG_INFINITY);
     for m in &motions {
         let samples = sample(m, &signal, period);
+        let (lo, hi) = min_max(samples.iter().map(|s| s.a_rod));
+        rod_accelerations = (rod_accelerations.0.min(lo), rod_accelerations.1.max(hi));
         for s in &samples {
             csv.row(&[
                 Cell::S(&crate::plot::visible(&m.label)),
@@ -300,8 +348,14 @@ pub fn motion(
         };
         let mut column = Vec::new();
         for (r, row) in rows.iter().enumerate() {
-            let title =
-                (r == 0).then(|| format!("({}) {}", (b'a' + columns.len() as u8) as char, m.label));
+            // A letter names a column only where there are several.
+            let title = (r == 0).then(|| {
+                if motions.len() > 1 {
+                    format!("({}) {}", (b'a' + columns.len() as u8) as char, m.label)
+                } else {
+                    m.label.clone()
+                }
+            });
             let panel = match row {
                 Row::Velocity => {
                     let (lo, hi) = min_max(samples.iter().flat_map(|s| [s.v_rod, s.v_slider]));
@@ -314,18 +368,6 @@ pub fn motion(
                         .push(curve("rod", &samples, |s| s.v_rod, rod_look()));
                     p.series
                         .push(curve("slider", &samples, |s| s.v_slider, slider_look()));
-                    // Drawn over the curves, so that it shows where the
-                    // slider's velocity crosses it.
-                    if m.label.starts_with("steady")
-                        && let Some((_, v_inf)) = steady
-                    {
-                        p.series.push(Series::hline(
-                            Some(super::sym("v_inf").quantity),
-                            v_inf,
-                            (0.0, t_end),
-                            Look::reference(),
-                        ));
-                    }
                     for (kind, look) in event_looks() {
                         let pts: Vec<(f64, f64)> = events
                             .iter()
@@ -336,6 +378,18 @@ pub fn motion(
                             p.series
                                 .push(Series::points(Some(&kind.replace('_', " ")), pts, look));
                         }
+                    }
+                    // Drawn last, over the curves and in a colour of its
+                    // own, so that it shows along the slider's velocity.
+                    if m.steady
+                        && let Some((_, v_inf)) = steady
+                    {
+                        p.series.push(Series::hline(
+                            Some(super::sym("v_inf").quantity),
+                            v_inf,
+                            (0.0, t_end),
+                            v_inf_look(),
+                        ));
                     }
                     p
                 }
@@ -355,16 +409,11 @@ pub fn motion(
                 }
                 Row::Acceleration => {
                     let (a_minus, a_plus) = (motor.a_0_minus(), motor.a_0_plus());
-                    let (lo, hi) = min_max(
-                        samples
-                            .iter()
-                            .flat_map(|s| [s.a_rod, s.a_slider])
-                            .chain([a_minus, a_plus]),
-                    );
+                    let range = band_range(&motor, samples.iter().map(|s| s.a_rod));
                     let mut p = Panel::new(
                         title.as_deref(),
                         t_axis(),
-                        Axis::linear("acceleration $a$ (m/s²)", padded(lo, hi, 0.06)),
+                        Axis::linear("acceleration $a$ (m/s²)", range),
                     );
                     p.series.push(Series::bands(
                         Some("stick band $a_0^-$ … $a_0^+$"),
@@ -386,9 +435,29 @@ pub fn motion(
     let panels: Vec<Panel> = (0..rows.len())
         .flat_map(|r| columns.iter().map(move |c| c[r].clone()))
         .collect();
+    let mut notes = vec![format!(
+        "Rod (dashed) and slider (solid), periods counted from rest; period T = {} {t_unit}.",
+        short(period * t_scale)
+    )];
+    if rows.contains(&Row::Acceleration) {
+        let (lo, hi) = rod_accelerations;
+        notes.push(format!(
+            "Accelerations on the stick band's scale: the slider can stick only while the rod's acceleration lies in the band a_0^- … a_0^+ = {} … {} m/s²; the rod's acceleration runs from {} to {} m/s².",
+            short(motor.a_0_minus()),
+            short(motor.a_0_plus()),
+            short(lo),
+            short(hi)
+        ));
+    }
+    if let Some((_, v_inf)) = steady {
+        notes.push(format!(
+            "Steady state (p → ∞): mean velocity v_inf = {} m/s.",
+            short(v_inf)
+        ));
+    }
     Ok(Figure {
         name: name.to_owned(),
-        plot: Plot::grid(panels, ncols, if ncols > 1 { 0.75 } else { 0.5 }),
+        plot: Plot::grid(panels, ncols, panel_aspect(rows.len(), ncols)).with_notes(notes),
         csv: csv.finish(),
         preset: if ncols > 1 {
             Preset::DoubleColumn
@@ -396,6 +465,36 @@ pub fn motion(
             Preset::SingleColumn
         },
     })
+}
+
+/// Height over width of a panel of a grid of `rows` by `columns`: flatter
+/// as rows are added, so that the default figure (three rows, two
+/// columns) is about two thirds as tall as it is wide.
+fn panel_aspect(rows: usize, columns: usize) -> f64 {
+    let rows = rows.max(1) as f64;
+    if columns > 1 {
+        (1.25 / rows).clamp(0.4, 0.75)
+    } else {
+        (1.0 / rows).clamp(0.3, 0.5)
+    }
+}
+
+/// Three significant digits.
+fn short(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let digits = (2 - x.abs().log10().floor() as i32).max(0) as usize;
+    format!("{x:.digits$}")
+}
+
+/// `v_inf` over the slider's velocity: long dashes in orange, which no
+/// curve of the figure has.
+fn v_inf_look() -> Look {
+    Look {
+        weight: 1.0,
+        ..Look::line(PALETTE[5], Dash::LongDash)
+    }
 }
 
 fn rod_look() -> Look {
@@ -522,78 +621,6 @@ fn slider_velocity_at(samples: &[Sampled], t: f64) -> f64 {
         .get(i)
         .or(samples.last())
         .map_or(0.0, |s| s.v_slider)
-}
-
-/// The start-up from rest: `v_p` against `p`, with `v_inf` and `p_0.99`.
-pub fn startup(scene: &Scene, name: &str) -> Result<Figure, PlotError> {
-    let mut quiet = scene.clone();
-    quiet.outputs.trajectory = false;
-    quiet.outputs.events = false;
-    let outcome = simulation::simulate(&quiet).map_err(PlotError::simulation(name))?;
-    let report = outcome.report().ok_or_else(|| {
-        PlotError::Argument(format!(
-            "the start-up figure needs a steady state; the scene's outcome is {}",
-            outcome.regime()
-        ))
-    })?;
-    let transient = report.transient.as_ref().ok_or_else(|| PlotError::Data {
-        figure: name.to_owned(),
-        reason: "the run simulated no start-up".to_owned(),
-    })?;
-    let v_inf = report.indicators.v_inf;
-    let mut csv = Csv::new(
-        &[&format!(
-            "Start-up from rest: mean velocity v_p of period p (m/s); v_inf = {v_inf:e} m/s; p_0.99 = {}; T = {:e} s.",
-            report
-                .startup_periods
-                .map_or("none".to_owned(), |p| p.to_string()),
-            report.period
-        )],
-        &["p", "v_p_m_per_s", "v_p_over_v_inf"],
-    );
-    let pts: Vec<(f64, f64)> = transient
-        .mean_velocities
-        .iter()
-        .enumerate()
-        .map(|(i, v)| ((i + 1) as f64, *v))
-        .collect();
-    for (p, v) in &pts {
-        csv.row(&[Cell::I(*p as i64), Cell::F(*v), Cell::F(v / v_inf)]);
-    }
-    let p_end = pts.len().max(2) as f64;
-    let (lo, hi) = min_max(pts.iter().map(|p| p.1).chain([0.0, v_inf]));
-    let mut panel = Panel::new(
-        None,
-        Axis::linear(&super::sym("p").label(), (0.0, p_end + 0.5)).integers(),
-        Axis::linear(&super::sym("v_p").label(), padded(lo, hi, 0.06)),
-    );
-    panel.series.push(Series::hline(
-        Some(super::sym("v_inf").quantity),
-        v_inf,
-        (0.0, p_end + 0.5),
-        Look::reference(),
-    ));
-    if let Some(p99) = report.startup_periods {
-        panel.series.push(Series::line(
-            Some(super::sym("startup_periods").quantity),
-            vec![(p99 as f64, lo - (hi - lo)), (p99 as f64, hi + (hi - lo))],
-            Look::line(super::style::GREY, Dash::Dotted),
-        ));
-    }
-    let look = if pts.len() <= 60 {
-        Look::nth(0).with_marker(Marker::Circle)
-    } else {
-        Look::nth(0)
-    };
-    panel
-        .series
-        .push(Series::line(Some(super::sym("v_p").quantity), pts, look));
-    Ok(Figure {
-        name: name.to_owned(),
-        plot: Plot::grid(vec![panel], 1, 0.62),
-        csv: csv.finish(),
-        preset: Preset::SingleColumn,
-    })
 }
 
 /// Figure 8 of the paper for `scene` (the paper's caption: `n = 2`
