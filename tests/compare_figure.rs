@@ -93,3 +93,46 @@ fn a_figure_whose_data_would_overwrite_an_input_is_refused() {
         "{err}"
     );
 }
+
+#[test]
+fn files_are_told_apart_by_their_step_in_the_legend_and_named_in_the_caption() {
+    let scene = Scene::from_path(Path::new(SCENE)).unwrap();
+    let run = |names: &[&str]| {
+        let files: Vec<PathBuf> = names
+            .iter()
+            .map(|n| PathBuf::from(format!("tests/data/compare/{n}")))
+            .collect();
+        let report = stickslip::compare(&scene, &files, &CompareOptions::default()).unwrap();
+        let figure = stickslip::plot::compare::figure(&report, None, "cmp").unwrap();
+        let legend: Vec<String> = figure
+            .plot
+            .legend
+            .iter()
+            .map(|e| stickslip::plot::visible(&e.label))
+            .collect();
+        (report, figure, legend)
+    };
+    let (report, figure, legend) = run(&["fixed_500.csv", "fixed_5000.csv"]);
+    // The fixtures' grid: S steps per harmonic period, n = 2, h = T / (2 S).
+    for s in [500.0, 5000.0] {
+        let h = report.signal.period / (2.0 * s);
+        let shown = legend
+            .iter()
+            .filter_map(|l| l.strip_prefix("h = ")?.strip_suffix(" ns"))
+            .filter_map(|v| v.parse::<f64>().ok())
+            .any(|v| (v * 1e-9 / h - 1.0).abs() < 5e-3);
+        assert!(shown, "h = {h:e} s in {legend:?}");
+    }
+    assert!(legend.iter().all(|l| !l.contains(".csv")), "{legend:?}");
+    let caption = figure.plot.notes.join(" ");
+    assert!(
+        caption.contains("fixed_500.csv") && caption.contains("fixed_5000.csv"),
+        "{caption}"
+    );
+    // Two files of one step are told apart by their place.
+    let (_, _, legend) = run(&["fixed_500.csv", "fixed_500.csv"]);
+    assert!(
+        legend.iter().any(|l| l == "file 1") && legend.iter().any(|l| l == "file 2"),
+        "{legend:?}"
+    );
+}

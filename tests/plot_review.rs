@@ -8,7 +8,7 @@
 use stickslip::plot::Preset;
 use stickslip::plot::marks::Role;
 use stickslip::plot::registry::ALL;
-use stickslip::plot::review::review;
+use stickslip::plot::review::{Check, review};
 
 #[test]
 fn every_figure_in_every_preset_passes_the_reviewers_checks() {
@@ -70,5 +70,49 @@ fn the_marks_describe_the_svg_that_is_written() {
             .map(|t| t.text.replace('\u{a0}', " "))
             .collect();
         assert_eq!(shown, marked, "{}", entry.name);
+    }
+}
+
+#[test]
+fn a_text_moved_onto_another_in_a_registered_figure_is_found() {
+    // A clean registered figure, then its first axis description planted
+    // on its first tick label: the review must report that overlap.
+    for name in [
+        "work_precision",
+        "compare_reference",
+        "fig2_ideal_and_fourier",
+    ] {
+        let entry = ALL.iter().find(|e| e.name == name).expect(name);
+        for preset in Preset::ALL {
+            let mut marks = entry.figure(preset).unwrap().marks(&preset.style());
+            assert_eq!(review(&marks), [], "{name} ({preset}) is clean");
+            let tick = marks
+                .texts
+                .iter()
+                .position(|t| t.role == Role::TickLabel)
+                .unwrap();
+            let label = marks
+                .texts
+                .iter()
+                .position(|t| t.role == Role::AxisLabel)
+                .unwrap();
+            let (at, moved) = (marks.texts[tick].bounds, &mut marks.texts[label]);
+            let (w, h) = (
+                moved.bounds.x1 - moved.bounds.x0,
+                moved.bounds.y1 - moved.bounds.y0,
+            );
+            moved.bounds.x0 = at.x0;
+            moved.bounds.y0 = at.y0;
+            moved.bounds.x1 = at.x0 + w;
+            moved.bounds.y1 = at.y0 + h;
+            let text = moved.text.clone();
+            let found = review(&marks);
+            assert!(
+                found
+                    .iter()
+                    .any(|f| f.check == Check::TextOverlap && f.what.contains(&text)),
+                "{name} ({preset}): {found:?}"
+            );
+        }
     }
 }

@@ -38,6 +38,7 @@ mod mat_file;
 mod output;
 pub(crate) mod periods;
 pub(crate) mod read;
+pub(crate) mod reference;
 pub(crate) mod rod;
 
 use crate::scene::{EngineKind, Scene};

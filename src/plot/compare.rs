@@ -9,10 +9,20 @@
 //! Panel (c), with two or more files with a step: the step-size part of
 //! the `v_inf` error (relative, `abs(v_p,user(P) - v_p(P)) / abs(v_inf)`)
 //! against the step `h` on logarithmic axes, with the fitted order line
-//! when the fit is supported. The notes give the exact `v_inf` and, for
-//! a file that ends before the start-up is over, the split of its `v_inf`
-//! error. The CSV beside the figure holds every drawn
-//! point: `panel, series, x, y` in SI units (s, m/s, periods, 1).
+//! when the fit is supported. A file is named in the legend by what
+//! tells it from the others, its step (`h = 1 µs`), or by its place in
+//! the command line (`file 2`) when it has no step or shares its step
+//! with another; the file names are the user's, not the figure's, and go
+//! to the notes (the caption), beside the exact `v_inf` and, for a file
+//! that ends before the start-up is over, the split of its `v_inf` error.
+//! The CSV beside the figure holds every drawn point: `panel, series, x,
+//! y` in SI units (s, m/s, periods, 1), the series of a file named by its
+//! file name.
+//!
+//! `reference_figure` (crate-private) makes the figure without files: the scene's own
+//! fixed-step reference at two resolutions, exported as a user's program
+//! would (`compare::reference`) and compared by the path the command
+//! line takes after reading ([`crate::compare::compare_data`]).
 
 use super::style::{Dash, Marker};
 use super::{Axis, Cell, Csv, Figure, Look, Panel, Plot, PlotError, Preset, Series};
@@ -29,6 +39,59 @@ fn short(file: &str) -> String {
     std::path::Path::new(file)
         .file_name()
         .map_or(file.to_owned(), |n| n.to_string_lossy().into_owned())
+}
+
+/// A step in the unit that suits it, to three significant digits.
+fn step_text(h: f64) -> String {
+    let (scale, unit) = if h < 1e-6 {
+        (1e9, "ns")
+    } else if h < 1e-3 {
+        (1e6, "µs")
+    } else if h < 1.0 {
+        (1e3, "ms")
+    } else {
+        (1.0, "s")
+    };
+    let v = h * scale;
+    let digits = if v >= 100.0 {
+        0
+    } else if v >= 10.0 {
+        1
+    } else {
+        2
+    };
+    let text = format!("{v:.digits$}");
+    let text = if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        text
+    };
+    format!("$h$ = {text} {unit}")
+}
+
+/// The legend's name of each file of `report` (see the module doc).
+fn labels(report: &Report) -> Vec<String> {
+    let by_step: Vec<Option<String>> = report.files.iter().map(|f| f.step.map(step_text)).collect();
+    by_step
+        .iter()
+        .enumerate()
+        .map(|(i, s)| match s {
+            Some(text) if by_step.iter().filter(|o| o.as_ref() == Some(text)).count() == 1 => {
+                text.clone()
+            }
+            _ => format!("file {}", i + 1),
+        })
+        .collect()
+}
+
+/// The label of `file` (one of `report.files`).
+fn label_of<'a>(report: &Report, labels: &'a [String], file: &FileReport) -> &'a str {
+    let i = report
+        .files
+        .iter()
+        .position(|f| std::ptr::eq(f, file))
+        .unwrap_or(0);
+    &labels[i]
 }
 
 /// The files of panel (b): all up to [`MAX_SERIES`], else the smallest and
@@ -75,6 +138,7 @@ pub fn figure(
     name: &str,
 ) -> Result<Figure, PlotError> {
     let period = report.signal.period;
+    let labels = labels(report);
     let mut csv = Csv::new(
         &[
             &format!("stickslip compare: exact v_inf = {:e} m/s", report.v_inf),
@@ -134,9 +198,16 @@ pub fn figure(
             Look::nth(0).weighted(1.4),
         ));
         panel.series.push(Series::points(
-            Some(&format!("{} $v_S$ (samples)", short(&f.file))),
+            Some(&format!("$v_S$ samples, {}", label_of(report, &labels, f))),
             user,
-            Look::nth_points(1),
+            // In the colour of the file's line in panel (b).
+            match chosen(report).iter().position(|s| std::ptr::eq(*s, f)) {
+                Some(i) => Look {
+                    color: Look::nth(i + 2).color,
+                    ..Look::nth_points(1)
+                },
+                None => Look::nth_points(1),
+            },
         ));
         panels.push(panel);
     }
@@ -166,13 +237,14 @@ pub fn figure(
         );
         for (i, f) in shown.iter().enumerate() {
             let label = short(&f.file);
+            let shown_as = label_of(report, &labels, f);
             let pts: Vec<(f64, f64)> = f.period_errors.iter().map(|e| (e.0 as f64, e.1)).collect();
             for (p, e) in &pts {
                 csv.row(&[Cell::S("b"), Cell::S(&label), Cell::F(*p), Cell::F(*e)]);
             }
             panel
                 .series
-                .push(Series::line(Some(&label), pts, Look::nth(i + 2)));
+                .push(Series::line(Some(shown_as), pts, Look::nth(i + 2)));
         }
         let total = report
             .files
@@ -258,6 +330,13 @@ pub fn figure(
         "Exact v∞ = {:.6} m/s, period T = {:.4e} s.",
         report.v_inf, period
     ));
+    let files: Vec<String> = report
+        .files
+        .iter()
+        .zip(&labels)
+        .map(|(f, l)| format!("{}: {}", super::visible(l), short(&f.file)))
+        .collect();
+    notes.push(format!("Files: {}.", files.join("; ")));
     // Where the file ends before the start-up: the split of its error.
     let unfinished: Vec<String> = report
         .files
@@ -287,4 +366,31 @@ pub fn figure(
         csv: csv.finish(),
         preset: Preset::SingleColumn,
     })
+}
+
+/// The compare figure of the fixed-step reference on `scene` at each of
+/// `steps` steps per period of the highest harmonic, over `periods`
+/// periods, each exported as `reference_S.csv` (see the module doc).
+pub(crate) fn reference_figure(
+    scene: &crate::scene::Scene,
+    steps: &[u32],
+    periods: u64,
+    name: &str,
+) -> Result<Figure, PlotError> {
+    let bad = |e: crate::compare::CompareError| PlotError::Data {
+        figure: name.to_owned(),
+        reason: e.to_string(),
+    };
+    let data = steps
+        .iter()
+        .map(|&s| {
+            crate::compare::reference::export(scene, s, periods)
+                .map(|d| (format!("reference_{s}.csv"), d))
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(bad)?;
+    let report =
+        crate::compare::compare_data(scene, &data, &crate::compare::CompareOptions::default())
+            .map_err(bad)?;
+    figure(&report, None, name)
 }

@@ -30,6 +30,8 @@
 //! * [`signals`]: figures 2-5 (ideal signals, harmonic amplitudes, rod
 //!   signals, signals of equal `f_max`);
 //! * [`performance`]: figures 6 and 7 (indicators against `n`);
+//! * [`precision`]: error against wall time of the event engine and the
+//!   fixed-step reference (the work-precision study);
 //! * [`scaling`]: figure 9 and the stroke scaling law;
 //! * [`timeline`]: the slider's modes over the start-up;
 //! * [`characteristic`]: `v_inf` against the load, with the stall force
@@ -70,6 +72,7 @@ pub mod marks;
 pub mod motion;
 pub mod optimize;
 pub mod performance;
+pub mod precision;
 pub mod registry;
 pub mod review;
 pub mod scaling;

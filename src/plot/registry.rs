@@ -1,7 +1,11 @@
 //! Every figure the project draws, in one list: the figures in `plots/`
 //! (the paper's figures 2-9, the stroke scaling law, the event timeline,
 //! the characteristic and the optimiser's two figures), every
-//! `stickslip plot --figure` kind of a scene, and a faceted sweep plot.
+//! `stickslip plot --figure` kind of a scene, a faceted sweep plot, the
+//! work-precision study (drawn from its committed data,
+//! `plots/work_precision.svg.csv`: its wall times are measured, so the
+//! data, not a run, is the input) and the `stickslip compare` figure of
+//! the default scene's own fixed-step reference at two resolutions.
 //!
 //! Contract: each [`Entry`] makes its figure from the project's own
 //! inputs (the default scene and motor, the section-7 grid, the default
@@ -14,7 +18,10 @@
 use super::motion::{self, Row, Span};
 use super::performance::{GridPoint, figures6_7};
 use super::sweep::{SweepSpec, sweep_figure_from};
-use super::{Figure, PlotError, Preset, characteristic, optimize, scaling, signals, timeline};
+use super::{
+    Figure, PlotError, Preset, characteristic, compare, optimize, precision, scaling, signals,
+    timeline,
+};
 use crate::motor::Motor;
 use crate::optimize::map::{self, MapGrid};
 use crate::optimize::{OptimizeTable, Optimum, Overrides, Settings};
@@ -91,6 +98,15 @@ pub const ALL: &[Entry] = &[
     }),
     entry("plot_timeline", |_| {
         timeline::scene_timeline(&Scene::default(), "plot_timeline")
+    }),
+    entry("compare_reference", |_| {
+        // `stickslip compare` of the default scene's fixed-step reference
+        // at 500 and at the paper's 5000 steps per harmonic period, over
+        // 1200 periods (the start-up is over).
+        compare::reference_figure(&Scene::default(), &[500, 5000], 1200, "compare_reference")
+    }),
+    entry(precision::NAME, |_| {
+        precision::figure(&precision::committed()?)
     }),
     entry("plot_sweep_faceted", |_| {
         let spec = SweepSpec {
