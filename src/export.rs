@@ -103,6 +103,7 @@ pub(crate) fn periods_table(periods: &[PeriodRecord], json_lines: bool) -> Strin
 }
 
 /// What `run --trajectory` / `--periods-series` asks for.
+#[cfg(feature = "cli")]
 #[derive(Debug, Clone, Default)]
 pub(crate) struct TrajectoryRequest {
     /// Write the states here.
@@ -117,6 +118,7 @@ pub(crate) struct TrajectoryRequest {
     pub periods_series: Option<std::path::PathBuf>,
 }
 
+#[cfg(feature = "cli")]
 impl TrajectoryRequest {
     /// True if anything is asked for.
     pub(crate) fn any(&self) -> bool {
@@ -126,6 +128,7 @@ impl TrajectoryRequest {
 
 /// Writes what `request` asks for, for `scene`; the per-period series
 /// covers the start-up to `p_0.99` (or the last sampled period, if later).
+#[cfg(feature = "cli")]
 pub(crate) fn write_requested(
     scene: &crate::scene::Scene,
     request: &TrajectoryRequest,

@@ -40,10 +40,13 @@ static DEFERRALS: AtomicUsize = AtomicUsize::new(0);
 /// Files to delete when a signal ends the process.
 static FILES: Mutex<BTreeSet<PathBuf>> = Mutex::new(BTreeSet::new());
 /// Set once the handlers are installed.
+#[cfg(feature = "cli")]
 static INSTALLED: OnceLock<()> = OnceLock::new();
 /// Set once the signal thread runs.
+#[cfg(feature = "cli")]
 static WATCHING: OnceLock<()> = OnceLock::new();
 /// While true, a signal ends the process at once (nothing to clean up).
+#[cfg(feature = "cli")]
 static IMMEDIATE: AtomicBool = AtomicBool::new(true);
 
 fn files() -> MutexGuard<'static, BTreeSet<PathBuf>> {
@@ -53,6 +56,8 @@ fn files() -> MutexGuard<'static, BTreeSet<PathBuf>> {
 }
 
 /// Starts handling SIGINT and SIGTERM (see the module docs). Idempotent.
+/// The command line installs it; a library caller keeps its own handling.
+#[cfg(feature = "cli")]
 pub(crate) fn install() -> std::io::Result<()> {
     use signal_hook::consts::{SIGINT, SIGTERM};
     if INSTALLED.get().is_some() {
@@ -76,7 +81,13 @@ pub(crate) fn install() -> std::io::Result<()> {
 /// Hands the signals to the clean-up thread, started on the first call
 /// after [`install`] (module docs). If the thread cannot be set up, the
 /// immediate exit stays: an interrupted command may then leave a
-/// temporary file, which is not worth refusing to run.
+/// temporary file, which is not worth refusing to run. Without the
+/// command line nothing is installed and there is nothing to watch.
+#[cfg(not(feature = "cli"))]
+fn watch() {}
+
+/// As above, with the handlers of the command line.
+#[cfg(feature = "cli")]
 fn watch() {
     use signal_hook::consts::{SIGINT, SIGTERM};
     if INSTALLED.get().is_none() {

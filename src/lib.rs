@@ -65,12 +65,23 @@
 
 #![warn(missing_docs)]
 #![warn(unreachable_pub)]
+// The full build (default features) is the one that shows every item is
+// used. The core alone (`--no-default-features`) still carries the text,
+// JSON and CSV renderings the front ends call (run, characteristic,
+// optimize, sweep and trajectory outputs), which nothing inside the core
+// calls.
+#![cfg_attr(
+    not(feature = "cli"),
+    allow(dead_code, unused_imports, unreachable_pub)
+)]
 
 pub mod analysis;
 pub mod characteristic;
 mod check;
+#[cfg(feature = "cli")]
 pub mod cli;
 mod compare;
+mod csv_text;
 mod engine;
 mod error;
 mod export;
@@ -81,6 +92,7 @@ pub mod numerics;
 mod observer;
 pub mod optimize;
 mod output;
+#[cfg(feature = "plot")]
 pub mod plot;
 mod plural;
 mod power;
@@ -94,9 +106,11 @@ pub mod sweep;
 pub mod symbol;
 
 pub use check::{CheckReport, check};
+#[cfg(feature = "files")]
+pub use compare::compare;
 pub use compare::{
     Column as CompareColumn, CompareError, CompareOptions, Report as CompareReport,
-    UserData as CompareData, compare, compare_data,
+    UserData as CompareData, compare_data,
 };
 pub use engine::event::{EventEngine, EventOptions};
 pub use engine::fixed_step::{FixedStepEngine, FixedStepOptions};

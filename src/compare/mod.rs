@@ -31,9 +31,11 @@
 
 mod analysis;
 pub(crate) mod convergence;
+#[cfg(feature = "files")]
 mod csv_file;
 pub(crate) mod events;
 pub(crate) mod exact;
+#[cfg(feature = "files")]
 mod mat_file;
 mod output;
 pub(crate) mod periods;
@@ -127,8 +129,12 @@ impl From<crate::error::SimulationError> for CompareError {
 }
 
 /// The error metrics (see the module doc).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-#[value(rename_all = "verbatim")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(
+    feature = "cli",
+    derive(clap::ValueEnum),
+    value(rename_all = "verbatim")
+)]
 #[allow(non_camel_case_types)]
 pub enum Metric {
     /// Steady-state velocity.
@@ -340,7 +346,8 @@ pub struct Report {
 
 /// Compares the user's files with the exact solution of `scene`: each
 /// file is read (CSV or MAT, by extension), then the arrays are compared
-/// ([`compare_data`]).
+/// ([`compare_data`]). The readers are the `files` feature's.
+#[cfg(feature = "files")]
 pub fn compare(
     scene: &Scene,
     files: &[PathBuf],

@@ -34,7 +34,8 @@ use std::path::Path;
 pub(crate) type RawColumn = (String, Result<Vec<f64>, (Option<String>, String)>);
 
 /// Unit of the time values in a user's file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum TimeUnit {
     /// Seconds.
     #[default]
@@ -57,7 +58,8 @@ impl TimeUnit {
 }
 
 /// Unit of the lengths in a user's file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum LengthUnit {
     /// Metres.
     #[default]
@@ -272,6 +274,7 @@ impl Origin {
     }
 }
 
+#[cfg(feature = "files")]
 /// Reads a CSV or MAT-file (by extension: `.mat` is a MAT-file, anything
 /// else CSV).
 pub(crate) fn read(path: &Path, options: &ReadOptions) -> Result<UserData, CompareError> {
@@ -356,6 +359,7 @@ pub(crate) fn read(path: &Path, options: &ReadOptions) -> Result<UserData, Compa
     Ok(data)
 }
 
+#[cfg(feature = "files")]
 /// The time of a Simulink struct whose signals were found: `s.time` for
 /// the columns `s`, `s(:,j)`, `s.signals...` (the first such struct with a
 /// non-empty time).
@@ -397,6 +401,7 @@ fn own_time(
     Ok(None)
 }
 
+#[cfg(feature = "files")]
 /// Reads only sample times (s): a CSV or MAT-file with a time column or
 /// variable (`t`, `time`, `tout`), or a text file with one time per line.
 pub(crate) fn read_times(path: &Path, options: &ReadOptions) -> Result<Vec<f64>, CompareError> {
@@ -607,6 +612,7 @@ fn validate(
     Ok(())
 }
 
+#[cfg(feature = "files")]
 /// The flattened variables of a MAT-file ([`super::mat_file`]).
 fn read_mat(path: &Path, file: &str) -> Result<Vec<RawColumn>, CompareError> {
     let bytes = std::fs::read(path).map_err(|e| CompareError::io(file, e.to_string()))?;

@@ -167,7 +167,6 @@ impl Map {
             self.stroke,
             self.f0
         );
-        let mut writer = csv::Writer::from_writer(Vec::new());
         let cell = |x: Option<f64>| {
             x.filter(|v| v.is_finite())
                 .map_or(String::new(), |v| format!("{v}"))
@@ -198,14 +197,9 @@ impl Map {
             ]
         }));
         for row in rows {
-            writer
-                .write_record(&row)
-                .expect("writing CSV to memory cannot fail");
+            text.push_str(&crate::csv_text::line(&row));
+            text.push('\n');
         }
-        let bytes = writer
-            .into_inner()
-            .expect("writing CSV to memory cannot fail");
-        text.push_str(&String::from_utf8(bytes).expect("the CSV is UTF-8"));
         text
     }
 }

@@ -10,6 +10,7 @@ use crate::error::{Error, SweepError};
 use crate::interrupt;
 use crate::provenance::{VERSION, scene_hash};
 use crate::simulation::{self, RunReport};
+#[cfg(feature = "cli")]
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -63,6 +64,24 @@ fn run_case_with(case: &Case, signals: &simulation::SignalCache) -> Result<CaseR
     })
 }
 
+/// Without the command line there is no progress bar: a library caller
+/// reports progress its own way.
+#[cfg(not(feature = "cli"))]
+struct ProgressBar;
+
+#[cfg(not(feature = "cli"))]
+impl ProgressBar {
+    fn inc(&self, _: u64) {}
+    fn finish_and_clear(&self) {}
+}
+
+#[cfg(not(feature = "cli"))]
+fn progress_bar(_len: usize, _progress: bool) -> ProgressBar {
+    ProgressBar
+}
+
+/// A progress bar on stderr if `progress` and stderr is a terminal.
+#[cfg(feature = "cli")]
 fn progress_bar(len: usize, progress: bool) -> ProgressBar {
     if !progress || !std::io::stderr().is_terminal() {
         return ProgressBar::hidden();

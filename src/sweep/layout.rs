@@ -3,7 +3,8 @@
 //! have written, for resuming and merging.
 
 use super::grid::Format;
-use super::table::{Cell, Column, Meta, column_difference, csv_line};
+use super::table::{Cell, Column, Meta, column_difference};
+use crate::csv_text::line as csv_line;
 use crate::error::SweepError;
 use std::path::Path;
 
@@ -160,15 +161,14 @@ pub(super) fn parse(path: &Path, text: &str) -> Result<Parsed, SweepError> {
         offset = 1;
     }
     let rest: String = lines.map(|(_, l)| format!("{l}\n")).collect();
-    let mut reader = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .from_reader(rest.as_bytes());
-    let mut records = reader.records();
+    let records = crate::csv_text::records(&rest)
+        .map_err(|(line, reason)| bad(offset + line, format!("unreadable CSV: {reason}")))?;
+    let mut records = records.into_iter();
     let Some(header) = records.next() else {
         return Ok(parsed);
     };
-    let header = header.map_err(|e| bad(offset + 1, format!("unreadable CSV header: {e}")))?;
-    if header.get(0) != Some("case") {
+    let header = header.fields;
+    if header.first().map(String::as_str) != Some("case") {
         return Err(bad(
             offset + 1,
             "not a sweep output: the first column is not \"case\"".into(),
@@ -182,13 +182,9 @@ pub(super) fn parse(path: &Path, text: &str) -> Result<Parsed, SweepError> {
         );
     }
     for record in records {
-        let record = record.map_err(|e| {
-            let line = e.position().map_or(0, |p| p.line() as usize);
-            bad(offset + line, format!("unreadable CSV row: {e}"))
-        })?;
-        let number = offset + record.position().map_or(0, |p| p.line() as usize);
+        let number = offset + record.line;
         let mut cells = Vec::with_capacity(columns.len());
-        for (column, field) in columns.iter().zip(&record) {
+        for (column, field) in columns.iter().zip(&record.fields) {
             let cell = column.parse_csv(field).map_err(|reason| {
                 bad(number, format!("{} = \"{field}\": {reason}", column.name()))
             })?;

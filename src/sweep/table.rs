@@ -494,18 +494,3 @@ pub(super) fn column_difference(found: &[Column], wanted: &[Column]) -> String {
         (false, false) => format!("the extra columns {extra} and no columns {missing}"),
     }
 }
-
-/// One CSV record, without the line end.
-pub(super) fn csv_line<S: AsRef<[u8]>>(fields: &[S]) -> String {
-    let mut writer = csv::WriterBuilder::new()
-        .terminator(csv::Terminator::Any(b'\n'))
-        .from_writer(Vec::new());
-    // Writing to memory cannot fail.
-    let _ = writer.write_record(fields);
-    let bytes = writer.into_inner().unwrap_or_default();
-    let mut line = String::from_utf8_lossy(&bytes).into_owned();
-    if line.ends_with('\n') {
-        line.pop();
-    }
-    line
-}
