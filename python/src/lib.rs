@@ -366,11 +366,14 @@ fn check_times(times: &[f64]) -> PyResult<()> {
     Ok(())
 }
 
+/// Columns of a table for Python: `(name, kind, data)` ([`columns_of`]).
+type Columns = Vec<(String, &'static str, PyObject)>;
+
 /// The columns of a CSV table, each `(name, kind, data)`: kind `"f8"`
 /// (numbers) or `"i8"` (integers, every cell written without a point or
 /// an exponent) with native-endian bytes for `numpy.frombuffer`, or
 /// `"str"` with a list of strings.
-fn columns_of(py: Python<'_>, csv: &str) -> PyResult<Vec<(String, &'static str, PyObject)>> {
+fn columns_of(py: Python<'_>, csv: &str) -> PyResult<Columns> {
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
@@ -425,11 +428,7 @@ impl Run {
 
     /// The exact states at `times` (native-endian `f64` bytes), as
     /// `run --trajectory` writes them: `[(column, kind, values)]` ([`columns_of`]).
-    fn trajectory(
-        &self,
-        py: Python<'_>,
-        times: &[u8],
-    ) -> PyResult<Vec<(String, &'static str, PyObject)>> {
+    fn trajectory(&self, py: Python<'_>, times: &[u8]) -> PyResult<Columns> {
         let times: Vec<f64> = times
             .chunks_exact(8)
             .map(|b| f64::from_ne_bytes(b.try_into().unwrap_or([0; 8])))
@@ -444,7 +443,7 @@ impl Run {
 
     /// The per-period series of the start-up, as `run --periods-series`
     /// writes it: `[(column, kind, values)]` ([`columns_of`]).
-    fn periods(&self, py: Python<'_>) -> PyResult<Vec<(String, &'static str, PyObject)>> {
+    fn periods(&self, py: Python<'_>) -> PyResult<Columns> {
         let scene = &self.scene;
         let (_, table) = py
             .allow_threads(|| stickslip::exact_tables(scene, &[], true))
@@ -706,7 +705,7 @@ fn sweep(
     jobs: Option<usize>,
     shard: Option<(usize, usize)>,
     timing: bool,
-) -> PyResult<(String, Vec<(String, &'static str, PyObject)>)> {
+) -> PyResult<(String, Columns)> {
     let (parsed, _) = overrides_of(overrides)?;
     let dir = TempDir::new()?;
     let mut file = toml::Table::new();
@@ -780,9 +779,9 @@ fn sweep(
 
 /// The columns of a sweep's CSV (after its header line), each
 /// `(name, kind, data)` as [`columns_of`] gives them: `case` integers,
-/// `sigma` a list of bools, `scene_hash`, `regime` and `failure` lists of
+/// `harmonics` integers, `sigma` a list of bools, `scene_hash`, `regime` and `failure` lists of
 /// strings, every other column numbers, an empty cell NaN.
-fn sweep_columns(py: Python<'_>, csv: &str) -> PyResult<Vec<(String, &'static str, PyObject)>> {
+fn sweep_columns(py: Python<'_>, csv: &str) -> PyResult<Columns> {
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
@@ -802,7 +801,7 @@ fn sweep_columns(py: Python<'_>, csv: &str) -> PyResult<Vec<(String, &'static st
                 let values: Vec<bool> = cells.map(|c| c == "true").collect();
                 ("bool", PyList::new(py, values)?.into_any().unbind())
             }
-            "case" => {
+            "case" | "harmonics" => {
                 let mut bytes = Vec::with_capacity(rows.len() * 8);
                 for cell in cells {
                     let v: i64 = cell.parse().map_err(|_| unreadable(cell))?;
@@ -828,6 +827,26 @@ fn sweep_columns(py: Python<'_>, csv: &str) -> PyResult<Vec<(String, &'static st
     Ok(out)
 }
 
+/// Median wall time (s) of `repeats` runs of the default scene in Rust,
+/// `stickslip::simulate(&Scene::default())`, for the benchmark that
+/// compares it with `stickslip.run` (examples/python/bench.py).
+#[pyfunction]
+fn time_default_run(py: Python<'_>, repeats: usize) -> PyResult<f64> {
+    let scene = Scene::default();
+    let mut times: Vec<f64> = py.allow_threads(|| {
+        (0..repeats.max(1))
+            .map(|_| {
+                let start = std::time::Instant::now();
+                let outcome = stickslip::simulate(&scene);
+                std::hint::black_box(&outcome);
+                start.elapsed().as_secs_f64()
+            })
+            .collect()
+    });
+    times.sort_by(f64::total_cmp);
+    Ok(times[times.len() / 2])
+}
+
 /// The native module.
 #[pymodule]
 fn _stickslip(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -843,5 +862,6 @@ fn _stickslip(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(optimize, m)?)?;
     m.add_function(wrap_pyfunction!(signal, m)?)?;
     m.add_function(wrap_pyfunction!(compare, m)?)?;
+    m.add_function(wrap_pyfunction!(time_default_run, m)?)?;
     Ok(())
 }
