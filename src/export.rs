@@ -3,7 +3,8 @@
 //!
 //! * the exact trajectory at given times and the per-period series of the
 //!   start-up, as CSV or JSON lines ([`trajectory_table`],
-//!   [`periods_table`]).
+//!   [`periods_table`]); [`exact_tables`] gives both as CSV text to
+//!   callers of the library (the Python package).
 
 use crate::compare::exact::{ExactState, PeriodRecord, event_name};
 use crate::error::Num;
@@ -133,9 +134,10 @@ pub(crate) fn write_requested(
     scene: &crate::scene::Scene,
     request: &TrajectoryRequest,
 ) -> Result<(), String> {
-    use crate::compare::exact;
-    let (signal, motor) = crate::simulation::build(scene).map_err(|e| e.to_string())?;
-    let period = signal.period();
+    let period = crate::simulation::build(scene)
+        .map_err(|e| e.to_string())?
+        .0
+        .period();
     let times: Vec<f64> = match (&request.trajectory, &request.times, request.sample_rate) {
         (None, _, _) => Vec::new(),
         (Some(_), Some(path), None) => {
@@ -173,6 +175,51 @@ pub(crate) fn write_requested(
             return Err("--trajectory needs --times FILE or --sample-rate HZ".to_owned());
         }
     };
+    let (trajectory, periods) = exact_series(scene, &times, request.periods_series.is_some())?;
+    if let Some(path) = &request.trajectory {
+        let text = trajectory_table(&trajectory.states, is_json_lines(path));
+        crate::output::write_atomically(path, text.as_bytes())
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    }
+    if let Some(path) = &request.periods_series {
+        let text = periods_table(&periods, is_json_lines(path));
+        crate::output::write_atomically(path, text.as_bytes())
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    }
+    Ok(())
+}
+
+/// The exact trajectory of `scene` at `times` (s, increasing) and, with
+/// `periods_series`, the per-period series of the start-up to `p_0.99`
+/// (or the last sampled period, if later), as the CSV tables that
+/// `stickslip run --trajectory` and `--periods-series` write (columns
+/// `t, x_R, v_R, a_R, x_S, v_S, mode` and `p, v_p, x_p, stick_time,
+/// events, event_kinds, x_S_end`), numbers with the
+/// shortest digits that read back to the same `f64`. Errors are the
+/// command line's one-line messages (too many samples, a time after the
+/// simulated span, a scene that cannot be built).
+pub fn exact_tables(
+    scene: &crate::scene::Scene,
+    times: &[f64],
+    periods_series: bool,
+) -> Result<(String, Option<String>), String> {
+    let (trajectory, periods) = exact_series(scene, times, periods_series)?;
+    Ok((
+        trajectory_table(&trajectory.states, false),
+        periods_series.then(|| periods_table(&periods, false)),
+    ))
+}
+
+/// The exact states at `times` and the per-period records asked for
+/// ([`exact_tables`]).
+fn exact_series(
+    scene: &crate::scene::Scene,
+    times: &[f64],
+    periods_series: bool,
+) -> Result<(crate::compare::exact::ExactSeries, Vec<PeriodRecord>), String> {
+    use crate::compare::exact;
+    let (signal, motor) = crate::simulation::build(scene).map_err(|e| e.to_string())?;
+    let period = signal.period();
     if times.len() as u64 > MAX_SAMPLES {
         return Err(format!(
             "--times: {} samples, more than the {MAX_SAMPLES} one export may have; split the file",
@@ -188,7 +235,7 @@ pub(crate) fn write_requested(
             Num(last)
         ));
     }
-    let startup = if request.periods_series.is_some() {
+    let startup = if periods_series {
         let mut exact_scene = scene.clone();
         exact_scene.run.engine = crate::scene::EngineKind::Event;
         // p_0.99 needs the start-up, which a run simulates only when asked.
@@ -203,16 +250,7 @@ pub(crate) fn write_requested(
     } else {
         0
     };
-    let series = exact::evaluate(&signal, &motor, &times, startup).map_err(|e| e.to_string())?;
-    if let Some(path) = &request.trajectory {
-        let text = trajectory_table(&series.states, is_json_lines(path));
-        crate::output::write_atomically(path, text.as_bytes())
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-    }
-    if let Some(path) = &request.periods_series {
-        let text = periods_table(&series.periods, is_json_lines(path));
-        crate::output::write_atomically(path, text.as_bytes())
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-    }
-    Ok(())
+    let mut series = exact::evaluate(&signal, &motor, times, startup).map_err(|e| e.to_string())?;
+    let periods = std::mem::take(&mut series.periods);
+    Ok((series, periods))
 }

@@ -119,6 +119,7 @@ pub use engine::{
     PeriodStart, Segment, WorkCounters,
 };
 pub use error::{Error, Num, ParamError, SceneError, SimulationError, SweepError};
+pub use export::exact_tables;
 pub use indicator::{Indicator, UnknownIndicator};
 pub use motor::{Motor, MotorParams};
 pub use observer::{EventLog, MAX_LOGGED_EVENTS, Trajectory};
