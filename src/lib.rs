@@ -34,9 +34,9 @@
 //! (`tests/architecture.rs` checks it):
 //!
 //! 1. `numerics`: trigonometric polynomials and their certified roots,
-//!    brackets, compensated sums, line fits; no physics; [`symbol`]: the
-//!    one table of quantity symbols and units that the indicators and
-//!    every figure's labels share;
+//!    brackets, compensated sums, line fits, contours of gridded values;
+//!    no physics; [`symbol`]: the one table of quantity symbols and
+//!    units that the indicators and every figure's labels share;
 //! 2. `signal` (the rod signal, docs/model.md section 2), `motor` (the
 //!    slider and its friction), `power` (the actuator's input power,
 //!    section 6.3 of the paper);

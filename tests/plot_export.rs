@@ -2,11 +2,12 @@
 //! page of the preset's width (read with lopdf, an independent PDF
 //! parser), its text set in the embedded DejaVu Sans and its producer the
 //! program version; the PNG has the pixel size `width / 25.4 in × dpi`;
-//! and states its resolution; the same figure gives the same bytes.
+//! and states its resolution; the same figure gives the same bytes; a
+//! raster of touching rectangles renders without a seam.
 
 use lopdf::{Document, Object};
 use stickslip::Motor;
-use stickslip::plot::{Format, PRODUCER, Preset, scaling, signals};
+use stickslip::plot::{Format, PRODUCER, Preset, scaling, signals, timeline};
 
 const PT_PER_MM: f64 = 72.0 / 25.4;
 
@@ -136,4 +137,100 @@ fn the_format_follows_the_extension() {
         e.contains("a.jpg") && e.contains(".svg, .pdf or .png"),
         "{e}"
     );
+}
+
+/// The bounding box (user units) of the event timeline's raster: the
+/// `M x0 y0 H x1 V y1 H x0 Z` rectangles of its mode bands (the legend's
+/// swatches are single rectangles and left out).
+fn raster_box(svg: &str) -> [f64; 4] {
+    let doc = roxmltree::Document::parse(svg).unwrap();
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    for g in doc.descendants().filter(|n| {
+        n.attribute("data-kind") == Some("bands")
+            && n.attribute("data-label")
+                .is_some_and(|l| l.starts_with("raster"))
+    }) {
+        for path in g.children().filter(|n| n.tag_name().name() == "path") {
+            let d = path.attribute("d").unwrap();
+            if d.matches('M').count() < 2 {
+                continue;
+            }
+            for r in d.split('M').filter(|r| !r.is_empty()) {
+                let v: Vec<f64> = r
+                    .trim_end_matches('Z')
+                    .split(['H', 'V', ' '])
+                    .map(|n| n.parse().unwrap())
+                    .collect();
+                b = [
+                    b[0].min(v[0]),
+                    b[1].min(v[1]),
+                    b[2].max(v[2]),
+                    b[3].max(v[3]),
+                ];
+            }
+        }
+    }
+    assert!(b[0] < b[2] && b[1] < b[3], "a raster");
+    b
+}
+
+/// The event timeline's raster of modes (hundreds of rows, each a few
+/// pixels high, every row and segment a rectangle touching the next) has
+/// no pixel of the white page inside it, rendered at print resolutions in
+/// every preset.
+#[test]
+fn raster_renders_without_a_seam() {
+    let f = timeline::event_timeline(&stickslip::Scene::default()).unwrap();
+    for preset in Preset::ALL {
+        let style = preset.style();
+        let svg = f.svg(&style);
+        let view_width: f64 = svg
+            .split("viewBox=\"0 0 ")
+            .nth(1)
+            .and_then(|r| r.split(' ').next())
+            .unwrap()
+            .parse()
+            .unwrap();
+        let raster = raster_box(&svg);
+        for dpi in [254.0, 300.0, 600.0] {
+            let bytes = f.encode(Format::Png, &style, dpi).unwrap();
+            let mut reader = png::Decoder::new(&bytes[..]).read_info().unwrap();
+            let mut pixels = vec![0; reader.output_buffer_size()];
+            let info = reader.next_frame(&mut pixels).unwrap();
+            let channels = info.color_type.samples();
+            let scale = f64::from(info.width) / view_width;
+            // Two pixels inside the raster's edges (the frame's antialiasing).
+            let px = |v: f64| (v * scale).round() as usize;
+            let (x0, y0, x1, y1) = (
+                px(raster[0]) + 2,
+                px(raster[1]) + 2,
+                px(raster[2]) - 2,
+                px(raster[3]) - 2,
+            );
+            assert!(
+                y1 > y0 + 100,
+                "{preset} at {dpi} dpi: the raster is {} rows",
+                y1 - y0
+            );
+            let mut white_rows = Vec::new();
+            for y in y0..y1 {
+                let row = &pixels[y * info.line_size..(y + 1) * info.line_size];
+                let white = (x0..x1)
+                    .filter(|x| row[x * channels..x * channels + 3] == [255, 255, 255])
+                    .count();
+                if white > 0 {
+                    white_rows.push((y, white));
+                }
+            }
+            assert!(
+                white_rows.is_empty(),
+                "{preset} at {dpi} dpi: white pixels in rows (row, count) {white_rows:?}"
+            );
+        }
+    }
 }

@@ -264,3 +264,71 @@ fn explicit_sizes_are_the_printed_sizes() {
     assert_eq!(largest, 9.0);
     check(&svg, "figure 5 at 120 x 70 mm, 9 pt");
 }
+
+/// The rectangles `(x0, y0, x1, y1)` of a filled path written as
+/// `M x0 y0 H x1 V y1 H x0 Z` subpaths.
+fn rects(d: &str) -> Vec<[f64; 4]> {
+    d.split('M')
+        .filter(|s| !s.is_empty())
+        .map(|s| {
+            let v: Vec<f64> = s
+                .trim_end_matches('Z')
+                .split(['H', 'V', ' '])
+                .map(|n| n.parse().unwrap())
+                .collect();
+            assert_eq!(v.len(), 5, "a rectangle: {s}");
+            [v[0], v[1], v[2], v[3]]
+        })
+        .collect()
+}
+
+/// The raster of modes (one row per period) covers its panel without a
+/// gap: rows written one below the other share their edges exactly (the
+/// same number in the SVG), and so do the segments within a row, so no
+/// renderer leaves a line of background between them at any resolution.
+#[test]
+fn raster_rows_and_segments_share_their_edges_exactly() {
+    let scene = stickslip::Scene::default();
+    let f = timeline::event_timeline(&scene).unwrap();
+    for preset in Preset::ALL {
+        let svg = f.svg(&preset.style());
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let mut all: Vec<[f64; 4]> = Vec::new();
+        for g in doc.descendants().filter(|n| {
+            n.attribute("data-kind") == Some("bands")
+                && n.attribute("data-label")
+                    .is_some_and(|l| l.starts_with("raster"))
+        }) {
+            // The legend's swatch of a mode is a single rectangle.
+            for path in g.children().filter(|n| n.tag_name().name() == "path") {
+                let found = rects(path.attribute("d").unwrap());
+                if found.len() > 1 {
+                    all.extend(found);
+                }
+            }
+        }
+        assert!(all.len() > 400, "{preset}: {} rectangles", all.len());
+        let left = all.iter().map(|r| r[0]).fold(f64::INFINITY, f64::min);
+        let right = all.iter().map(|r| r[2]).fold(f64::NEG_INFINITY, f64::max);
+        let mut rows: std::collections::BTreeMap<(u64, u64), Vec<[f64; 2]>> = Default::default();
+        for r in &all {
+            rows.entry((r[1].to_bits(), r[3].to_bits()))
+                .or_default()
+                .push([r[0], r[2]]);
+        }
+        let mut bottom_of_previous: Option<f64> = None;
+        for ((top, bottom), mut spans) in rows {
+            let (top, bottom) = (f64::from_bits(top), f64::from_bits(bottom));
+            if let Some(b) = bottom_of_previous {
+                assert_eq!(top, b, "{preset}: a gap or overlap between rows at {b}");
+            }
+            bottom_of_previous = Some(bottom);
+            spans.sort_by(|a, b| a[0].total_cmp(&b[0]));
+            assert_eq!(spans[0][0], left, "{preset}: row at {top} starts late");
+            assert_eq!(spans[spans.len() - 1][1], right, "{preset}: row at {top}");
+            for w in spans.windows(2) {
+                assert_eq!(w[0][1], w[1][0], "{preset}: gap in the row at {top}");
+            }
+        }
+    }
+}

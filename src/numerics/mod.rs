@@ -5,11 +5,14 @@
 //!   period, certified (none missed), in `O(n^2)`.
 //! * `bracket`: one root in a sign-changing bracket, safeguarded Newton.
 //! * `compensated`: Neumaier's compensated sum.
+//! * `contour`: contour lines and superlevel regions of gridded values
+//!   (marching squares).
 //! * `line_fit`: least-squares lines and log-log slopes.
 //! * `taylor`: Taylor coefficients of a harmonic series about a point.
 
 pub(crate) mod bracket;
 mod compensated;
+pub(crate) mod contour;
 pub(crate) mod line_fit;
 pub(crate) mod taylor;
 pub(crate) mod trig_roots;

@@ -168,26 +168,62 @@ impl Canvas {
         );
     }
 
-    /// A filled rectangle without outline, its edges on whole pixels (so
-    /// that touching rectangles of a raster leave no seams).
+    /// A filled rectangle without outline (see [`Canvas::fill_rects`]).
     pub(crate) fn fill_rect(&mut self, x: f64, y: f64, w: f64, h: f64, color: Rgb) {
-        if w <= 0.0 || h <= 0.0 {
+        self.fill_rects(&[[(x, y), (x + w, y + h)]], color);
+    }
+
+    /// Filled rectangles without outline, each given by its top-left and
+    /// bottom-right corners, in one path with edges on whole pixels
+    /// (`crispEdges`). Every edge is written by its coordinate (never as
+    /// a position plus a size), so a rectangle that ends where the next
+    /// begins shares that edge exactly, and touching rectangles of one
+    /// colour are one shape to the renderer: a raster shows no seam.
+    pub(crate) fn fill_rects(&mut self, rects: &[[(f64, f64); 2]], color: Rgb) {
+        // The coordinates as written (two decimals).
+        let snap = |v: f64| (v * 100.0).round() / 100.0;
+        let rects: Vec<[f64; 4]> = rects
+            .iter()
+            .map(|[a, b]| [snap(a.0), snap(a.1), snap(b.0), snap(b.1)])
+            .filter(|[x0, y0, x1, y1]| x0 < x1 && y0 < y1)
+            .collect();
+        if rects.is_empty() {
             return;
         }
-        self.record(Bounds {
-            x0: x,
-            y0: y,
-            x1: x + w,
-            y1: y + h,
-        });
+        let (x0, x1) = super::min_max(rects.iter().flat_map(|r| [r[0], r[2]]));
+        let (y0, y1) = super::min_max(rects.iter().flat_map(|r| [r[1], r[3]]));
+        self.record(Bounds { x0, y0, x1, y1 });
+        self.body.push_str("<path d=\"");
+        for r in &rects {
+            let [x0, y0, x1, y1] = r.map(num);
+            let _ = write!(self.body, "M{x0} {y0}H{x1}V{y1}H{x0}Z");
+        }
         let _ = writeln!(
             self.body,
-            r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{color}" shape-rendering="crispEdges"/>"#,
-            num(x),
-            num(y),
-            num(w),
-            num(h)
+            "\" fill=\"{color}\" shape-rendering=\"crispEdges\"/>"
         );
+    }
+
+    /// Filled polygons without outline, all in one path (nonzero rule):
+    /// polygons of the same orientation that share an edge are one shape
+    /// to the renderer, so no seam shows between them.
+    pub(crate) fn fill_polygons(&mut self, polygons: &[Vec<(f64, f64)>], color: Rgb) {
+        let polygons: Vec<&Vec<(f64, f64)>> = polygons.iter().filter(|p| p.len() >= 3).collect();
+        if polygons.is_empty() {
+            return;
+        }
+        let (x0, x1) = super::min_max(polygons.iter().flat_map(|p| p.iter().map(|q| q.0)));
+        let (y0, y1) = super::min_max(polygons.iter().flat_map(|p| p.iter().map(|q| q.1)));
+        self.record(Bounds { x0, y0, x1, y1 });
+        self.body.push_str("<path d=\"");
+        for polygon in polygons {
+            for (i, (x, y)) in polygon.iter().enumerate() {
+                let cmd = if i == 0 { 'M' } else { 'L' };
+                let _ = write!(self.body, "{cmd}{} {}", num(*x), num(*y));
+            }
+            self.body.push('Z');
+        }
+        let _ = writeln!(self.body, "\" fill=\"{color}\"/>");
     }
 
     /// A marker of diameter `size` (pt) centred on `(x, y)`.

@@ -534,6 +534,9 @@ fn draw_series(canvas: &mut Canvas, panel: &Panel, area: Rect, style: &Style) {
         let label = s.label.as_deref().unwrap_or("");
         canvas.open_series(label, &s.look, s.kind.name());
         let width = style.line_pt * s.look.weight;
+        // Bands and areas are filled as one shape per series, so touching
+        // pieces show no seam.
+        let (mut rects, mut polygons) = (Vec::new(), Vec::new());
         for piece in &s.pieces {
             let frac: Vec<(f64, f64)> = piece.iter().map(|&p| fractions(panel, p)).collect();
             match s.kind {
@@ -548,8 +551,13 @@ fn draw_series(canvas: &mut Canvas, panel: &Panel, area: Rect, style: &Style) {
                         };
                         let (x0, y0) = area.at(clamp(a.0.min(b.0)), clamp(a.1.max(b.1)));
                         let (x1, y1) = area.at(clamp(a.0.max(b.0)), clamp(a.1.min(b.1)));
-                        canvas.fill_rect(x0, y0, x1 - x0, y1 - y0, s.look.color);
+                        rects.push([(x0, y0), (x1, y1)]);
                     }
+                }
+                Kind::Areas => {
+                    let clamp =
+                        |(fx, fy): (f64, f64)| area.at(fx.clamp(0.0, 1.0), fy.clamp(0.0, 1.0));
+                    polygons.push(frac.iter().map(|&p| clamp(p)).collect::<Vec<_>>());
                 }
                 Kind::Points => {
                     for p in frac.iter().filter(|p| in_unit(**p)) {
@@ -569,6 +577,8 @@ fn draw_series(canvas: &mut Canvas, panel: &Panel, area: Rect, style: &Style) {
                 }
             }
         }
+        canvas.fill_rects(&rects, s.look.color);
+        canvas.fill_polygons(&polygons, s.look.color);
         canvas.close();
     }
 }

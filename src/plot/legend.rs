@@ -128,7 +128,7 @@ pub(crate) fn draw(
 fn swatch(canvas: &mut Canvas, e: &LegendEntry, (x, y): (f64, f64), m: &Metrics, style: &Style) {
     let look = e.look;
     match e.kind {
-        Kind::Bands => {
+        Kind::Bands | Kind::Areas => {
             let h = 0.8 * m.font;
             canvas.fill_rect(x, y - h / 2.0, m.swatch, h, look.color);
         }

@@ -8,7 +8,7 @@
 //!   175 mm, `slide`), font size, and the look of series (Okabe-Ito
 //!   colours, dash patterns, markers);
 //! * `axes`: ranges, linear and logarithmic ticks, tick labels;
-//! * `series`: curves, points, bands, panels, clipping;
+//! * `series`: curves, points, bands, areas, panels, clipping;
 //! * `legend`: legend entries and their layout; `colorbar`: the scale of
 //!   a map's colours;
 //! * `layout`: panels in a grid at the printed size, drawn to SVG;

@@ -1,7 +1,9 @@
 //! Series and panels: what is drawn, in data coordinates.
 //!
 //! Contract: a [`Series`] is a curve (one or more pieces, each a
-//! polyline), a set of points, or bands (filled spans); its [`Look`] is
+//! polyline), a set of points, bands (filled spans) or areas (filled
+//! polygons, drawn as one shape so that touching ones leave no seam); its
+//! [`Look`] is
 //! its identity in the legend. A [`Panel`] holds two axes, series drawn in
 //! order (later on top) and notes. Drawing clips every curve to the axes
 //! ([`clip_polyline`]), so a zoomed axis never draws outside its panel.
@@ -20,6 +22,9 @@ pub enum Kind {
     Points,
     /// Filled spans: consecutive points of a piece are opposite corners.
     Bands,
+    /// Filled polygons, one per piece, all filled as one shape (nonzero
+    /// rule), so polygons sharing an edge show no seam between them.
+    Areas,
 }
 
 impl Kind {
@@ -29,6 +34,7 @@ impl Kind {
             Kind::Curve => "curve",
             Kind::Points => "points",
             Kind::Bands => "bands",
+            Kind::Areas => "areas",
         }
     }
 }
@@ -42,7 +48,7 @@ pub struct Series {
     pub pieces: Vec<Vec<(f64, f64)>>,
     /// Colour, dash pattern and marker.
     pub look: Look,
-    /// Curve, points or bands.
+    /// Curve, points, bands or areas.
     pub kind: Kind,
 }
 
@@ -79,6 +85,17 @@ impl Series {
             pieces: spans.into_iter().map(|[a, b]| vec![a, b]).collect(),
             look,
             kind: Kind::Bands,
+        }
+    }
+
+    /// Filled polygons, each given by its corners (all in the same
+    /// orientation, so that touching ones add up).
+    pub fn areas(label: Option<&str>, polygons: Vec<Vec<(f64, f64)>>, look: Look) -> Self {
+        Series {
+            label: label.map(str::to_owned),
+            pieces: polygons,
+            look,
+            kind: Kind::Areas,
         }
     }
 }
