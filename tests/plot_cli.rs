@@ -344,6 +344,18 @@ fn bad_arguments_are_one_line_and_create_nothing() {
             "each $ closed",
         ),
         (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf,v_inf",
+            ],
+            "--y v_inf,v_inf: names v_inf twice",
+        ),
+        (
             vec![scene, "-o", s(&out), "--y-unit", "ms"],
             "--y-unit: applies to a sweep output",
         ),
@@ -565,6 +577,61 @@ fn two_y_columns_of_one_unit_have_one_legend_entry_each() {
     for key in ["startup_time", "period"] {
         assert_eq!(rows.iter().filter(|r| r[column] == key).count(), 4, "{key}");
     }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Several `--y` columns with `--series` name each pair (column, value)
+/// in the legend; more pairs than the palette's eight colours are
+/// refused, with nothing written.
+#[test]
+fn several_y_columns_with_series_are_pairs_up_to_eight() {
+    let d = dir("pairs");
+    let input = d.join("times.csv");
+    std::fs::write(&input, TIMES_CSV).unwrap();
+    let out = d.join("p.svg");
+    let mut args = vec![
+        s(&input),
+        "-o",
+        s(&out),
+        "--x",
+        "harmonics",
+        "--y",
+        "startup_time,period",
+        "--series",
+        "sigma",
+    ];
+    let (code, _, err) = cli(&args);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    for pair in [
+        "$Tp_{0.99}$, without sigma factors",
+        "$Tp_{0.99}$, with sigma factors",
+        "$T$, without sigma factors",
+        "$T$, with sigma factors",
+    ] {
+        assert!(svg.contains(&format!("data-label=\"{pair}\"")), "{pair}");
+    }
+    // Five values of `harmonics` times two columns: ten entries.
+    let many = d.join("many.csv");
+    let mut text = String::from("harmonics,sigma,startup_time,period\n");
+    for n in 2..7 {
+        text.push_str(&format!("{n},false,0.01,0.001\n{n},true,0.02,0.001\n"));
+    }
+    std::fs::write(&many, text).unwrap();
+    let out = d.join("m.svg");
+    args[0] = s(&many);
+    args[2] = s(&out);
+    args[3] = "--x";
+    args[4] = "sigma";
+    args[8] = "harmonics";
+    let (code, _, err) = cli(&args);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("--series harmonics: 2 --y columns times 5 values make 10 legend entries")
+            && err.lines().count() == 1,
+        "{err}"
+    );
+    assert!(!out.exists() && !d.join("m.svg.csv").exists());
     std::fs::remove_dir_all(&d).unwrap();
 }
 

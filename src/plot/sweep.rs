@@ -14,9 +14,10 @@
 //! its column measures (a ratio takes none; an undocumented column is
 //! taken to be in SI); the drawn values, and the CSV written beside the
 //! figure (its header names the unit), are the SI values times the
-//! unit's factor. Several `--y` columns share one unit and one axis, each
-//! named in the legend by its description and symbol; with `--series`
-//! their legend entries are the pairs (symbol, value). A row
+//! unit's factor. Several `--y` columns (each once) share one unit and one
+//! axis, each named in the legend by its description and symbol; with
+//! `--series` their legend entries are the pairs (symbol, value), at most
+//! as many as the palette has colours. A row
 //! whose `--y` cell is empty is never dropped: it is drawn as a marker on
 //! the panel's bottom edge at its x, by reason — `failure` text (failed),
 //! a `regime` that is not a steady one (`run-away`, `not_converged`), or
@@ -154,6 +155,17 @@ fn check_spec(spec: &SweepSpec) -> Result<Axes, PlotError> {
         return Err(PlotError::Argument(
             "--y: a sweep plot needs at least one column".to_owned(),
         ));
+    }
+    let repeated = spec
+        .y
+        .iter()
+        .enumerate()
+        .find(|(i, c)| spec.y[..*i].contains(c));
+    if let Some((_, twice)) = repeated {
+        return Err(PlotError::Argument(format!(
+            "--y {}: names {twice} twice",
+            spec.y.join(",")
+        )));
     }
     let units: Vec<Option<&str>> = spec.y.iter().map(|c| si_unit(c)).collect();
     if units.iter().any(|u| *u != units[0]) {
@@ -358,6 +370,18 @@ fn draw(
     };
     let facets = distinct(rows.iter().map(|r| r.facet.as_str()));
     let series = distinct(rows.iter().map(|r| r.series.as_str()));
+    if let Some(col) = spec.series.as_deref()
+        && spec.y.len() > 1
+        && spec.y.len() * series.len() > PALETTE.len()
+    {
+        return Err(PlotError::Argument(format!(
+            "--series {col}: {} --y columns times {} values make {} legend entries, more than {} told apart by colour; use --facet {col}, or one --y",
+            spec.y.len(),
+            series.len(),
+            spec.y.len() * series.len(),
+            PALETTE.len()
+        )));
+    }
     let mut flags: Vec<Flag> = rows
         .iter()
         .flat_map(|r| r.ys.iter().filter_map(|y| y.clone().err()))
