@@ -101,10 +101,12 @@ pub(crate) struct PlotArgs {
     /// Sweep: logarithmic y axis.
     #[arg(long)]
     log_y: bool,
-    /// Sweep: a horizontal reference line at this y (repeatable).
+    /// Sweep: a horizontal reference line at this y, in --y-unit if given
+    /// (repeatable).
     #[arg(long, value_name = "Y", allow_negative_numbers = true)]
     ref_y: Vec<f64>,
-    /// Sweep: a vertical reference line at this x (repeatable).
+    /// Sweep: a vertical reference line at this x, in --x-unit if given
+    /// (repeatable).
     #[arg(long, value_name = "X", allow_negative_numbers = true)]
     ref_x: Vec<f64>,
     /// Sweep: the x axis in this unit (the column is in SI), e.g. ms, um,
