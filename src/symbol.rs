@@ -116,6 +116,7 @@ pub const SYMBOLS: &[Symbol] = &[
     s("x_S", "$x_S$", "m", "slider position"),
     s("v_S", "$v_S$", "m/s", "slider velocity"),
     s("a_S", "$a_S$", "m/s²", "slider acceleration"),
+    s("period", "$T$", "s", "period"),
 ];
 
 /// The symbol named `key`, if the table has it.

@@ -273,6 +273,104 @@ fn bad_arguments_are_one_line_and_create_nothing() {
             "--log-x",
         ),
         (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf",
+                "--y-unit",
+                "ms",
+            ],
+            "--y-unit ms: v_inf is in m/s, not s",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf",
+                "--x-unit",
+                "mm",
+            ],
+            "--x-unit mm: level is a ratio",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf",
+                "--y-unit",
+                "furlong/s",
+            ],
+            "--y-unit furlong/s: not a unit",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf,level",
+            ],
+            "--y v_inf,level: columns on one axis share a unit",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf",
+                "--label",
+                "v_inf",
+            ],
+            "--label v_inf: expected COLUMN=TEXT",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf",
+                "--label",
+                "v_inf=$v",
+            ],
+            "each $ closed",
+        ),
+        (
+            vec![
+                s(&input),
+                "-o",
+                s(&out),
+                "--x",
+                "level",
+                "--y",
+                "v_inf,v_inf",
+            ],
+            "--y v_inf,v_inf: names v_inf twice",
+        ),
+        (
+            vec![scene, "-o", s(&out), "--y-unit", "ms"],
+            "--y-unit: applies to a sweep output",
+        ),
+        (
             vec![scene, "-o", s(&out), "--x", "level"],
             "--x: applies to a sweep output",
         ),
@@ -357,4 +455,228 @@ fn a_figure_data_file_never_overwrites_an_input_or_another_figure_data() {
     );
     assert!(!out.exists());
     assert_eq!(std::fs::read_to_string(&named).unwrap(), SWEEP_CSV);
+}
+
+/// Start-up times and periods in seconds, as a sweep writes them.
+const TIMES_CSV: &str = "case,harmonics,sigma,startup_time,period,regime,failure\n\
+0,2,false,0.05,0.0004,slip-slip,\n\
+1,3,false,0.02,0.0006,slip-slip,\n\
+2,4,false,0.004,0.0008,slip-slip,\n\
+3,2,true,0.03,0.0004,slip-slip,\n";
+
+/// The figure's data rows (after its `#` lines and header) as cells.
+fn data_rows(csv: &str) -> (Vec<String>, Vec<Vec<String>>) {
+    let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
+    let split = |l: &str| l.split(',').map(str::to_owned).collect::<Vec<_>>();
+    let header = split(lines.next().expect("a header"));
+    (header, lines.map(split).collect())
+}
+
+/// `--y-unit ms` draws seconds times 1000 (1 s = 1000 ms): the figure's
+/// data says the unit in its header and holds the drawn values, the axis
+/// and the reference line's legend entry say ms.
+#[test]
+fn a_display_unit_scales_the_drawn_values_by_its_factor() {
+    let d = dir("units");
+    let input = d.join("times.csv");
+    std::fs::write(&input, TIMES_CSV).unwrap();
+    let out = d.join("t.svg");
+    let (code, _, err) = cli(&[
+        s(&input),
+        "-o",
+        s(&out),
+        "--x",
+        "harmonics",
+        "--y",
+        "startup_time",
+        "--y-unit",
+        "ms",
+        "--log-y",
+        "--ref-y",
+        "10",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (header, rows) = data_rows(&std::fs::read_to_string(d.join("t.svg.csv")).unwrap());
+    let y = header
+        .iter()
+        .position(|h| h == "y (ms)")
+        .expect("y (ms) in the header");
+    let x = header
+        .iter()
+        .position(|h| h == "x")
+        .expect("x in the header");
+    let drawn: Vec<(f64, f64)> = rows
+        .iter()
+        .map(|r| (r[x].parse().unwrap(), r[y].parse().unwrap()))
+        .collect();
+    let given = [(2.0, 0.05), (3.0, 0.02), (4.0, 0.004), (2.0, 0.03)];
+    assert_eq!(drawn.len(), given.len());
+    for ((dx, dy), (gx, gy)) in drawn.iter().zip(given) {
+        assert_eq!(*dx, gx, "x has no unit and is drawn as given");
+        assert!((dy - 1000.0 * gy).abs() <= 1e-12 * dy, "{dy} ms for {gy} s");
+    }
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains("(ms)<"), "the axis says ms");
+    assert!(!svg.contains("(s)<"), "and not s");
+    assert!(
+        svg.contains(r#"data-label="$Tp_{0.99}$ = 10 ms""#),
+        "the reference line is named by its quantity and value"
+    );
+    // The same in ASCII: `us` is µs, a million per second.
+    let out = d.join("us.svg");
+    let (code, _, err) = cli(&[
+        s(&input),
+        "-o",
+        s(&out),
+        "--x",
+        "harmonics",
+        "--y",
+        "period",
+        "--y-unit",
+        "us",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (header, rows) = data_rows(&std::fs::read_to_string(d.join("us.svg.csv")).unwrap());
+    let y = header.iter().position(|h| h == "y (µs)").expect("y (µs)");
+    let first: f64 = rows[0][y].parse().unwrap();
+    assert!(
+        (first - 400.0).abs() < 1e-9,
+        "0.0004 s is 400 µs, not {first}"
+    );
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Two `--y` columns of one unit share the axis, and the legend names
+/// each by its description and symbol from the table of symbols.
+#[test]
+fn two_y_columns_of_one_unit_have_one_legend_entry_each() {
+    let d = dir("two_y");
+    let input = d.join("times.csv");
+    std::fs::write(&input, TIMES_CSV).unwrap();
+    let out = d.join("two.svg");
+    let (code, _, err) = cli(&[
+        s(&input),
+        "-o",
+        s(&out),
+        "--x",
+        "harmonics",
+        "--y",
+        "startup_time",
+        "--y",
+        "period",
+        "--y-unit",
+        "ms",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    let mut labels: Vec<&str> = svg
+        .split("data-label=\"")
+        .skip(1)
+        .filter_map(|rest| rest.split('"').next())
+        .filter(|l| !l.is_empty())
+        .collect();
+    labels.sort_unstable();
+    labels.dedup();
+    let named = |key: &str| {
+        let s = stickslip::symbol::symbol(key).unwrap();
+        format!("{} {}", s.description, s.quantity)
+    };
+    assert_eq!(labels, [named("period"), named("startup_time")]);
+    // Each column's rows in the figure's data, by name.
+    let (header, rows) = data_rows(&std::fs::read_to_string(d.join("two.svg.csv")).unwrap());
+    let column = header.iter().position(|h| h == "y_column").unwrap();
+    for key in ["startup_time", "period"] {
+        assert_eq!(rows.iter().filter(|r| r[column] == key).count(), 4, "{key}");
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Several `--y` columns with `--series` name each pair (column, value)
+/// in the legend; more pairs than the palette's eight colours are
+/// refused, with nothing written.
+#[test]
+fn several_y_columns_with_series_are_pairs_up_to_eight() {
+    let d = dir("pairs");
+    let input = d.join("times.csv");
+    std::fs::write(&input, TIMES_CSV).unwrap();
+    let out = d.join("p.svg");
+    let mut args = vec![
+        s(&input),
+        "-o",
+        s(&out),
+        "--x",
+        "harmonics",
+        "--y",
+        "startup_time,period",
+        "--series",
+        "sigma",
+    ];
+    let (code, _, err) = cli(&args);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    for pair in [
+        "$Tp_{0.99}$, without sigma factors",
+        "$Tp_{0.99}$, with sigma factors",
+        "$T$, without sigma factors",
+        "$T$, with sigma factors",
+    ] {
+        assert!(svg.contains(&format!("data-label=\"{pair}\"")), "{pair}");
+    }
+    // Five values of `harmonics` times two columns: ten entries.
+    let many = d.join("many.csv");
+    let mut text = String::from("harmonics,sigma,startup_time,period\n");
+    for n in 2..7 {
+        text.push_str(&format!("{n},false,0.01,0.001\n{n},true,0.02,0.001\n"));
+    }
+    std::fs::write(&many, text).unwrap();
+    let out = d.join("m.svg");
+    args[0] = s(&many);
+    args[2] = s(&out);
+    args[3] = "--x";
+    args[4] = "sigma";
+    args[8] = "harmonics";
+    let (code, _, err) = cli(&args);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("--series harmonics: 2 --y columns times 5 values make 10 legend entries")
+            && err.lines().count() == 1,
+        "{err}"
+    );
+    assert!(!out.exists() && !d.join("m.svg.csv").exists());
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// `--label COLUMN=TEXT` names the column on its axis and in the panel
+/// titles of its facets instead of the table of symbols.
+#[test]
+fn a_label_replaces_the_column_name_on_axes_and_panel_titles() {
+    let d = dir("label");
+    let input = d.join("times.csv");
+    std::fs::write(&input, TIMES_CSV).unwrap();
+    let out = d.join("l.svg");
+    let (code, _, err) = cli(&[
+        s(&input),
+        "-o",
+        s(&out),
+        "--x",
+        "harmonics",
+        "--y",
+        "startup_time",
+        "--facet",
+        "sigma",
+        "--label",
+        "harmonics=drive harmonics",
+        "--label",
+        "sigma=smoothing",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        svg.contains(">drive harmonics</text>"),
+        "axis named by --label"
+    );
+    assert!(!svg.contains("number of harmonics"), "not by the table");
+    assert!(svg.contains(">without smoothing</text>"));
+    assert!(svg.contains(">with smoothing</text>"));
+    std::fs::remove_dir_all(&d).unwrap();
 }

@@ -44,7 +44,7 @@ fn figures() -> Vec<Figure> {
     std::fs::write(&csv, SWEEP_CSV).unwrap();
     let spec = SweepSpec {
         x: "harmonics".into(),
-        y: "v_inf".into(),
+        y: vec!["v_inf".into()],
         series: Some("level".into()),
         ref_y: vec![0.06],
         ..SweepSpec::default()

@@ -1,6 +1,7 @@
 //! `stickslip plot INPUT -o FILE`: a publication figure of a scene (TOML:
 //! its motion over chosen periods, its start-up, or its event timeline) or
-//! of a sweep output (CSV: `--x`, `--y`, `--series`, `--facet`), written
+//! of a sweep output (CSV: `--x`, `--y`, `--series`, `--facet`, units and
+//! labels), written
 //! as SVG, PDF or PNG by the extension of `-o`, with its data as CSV
 //! beside it (see [`crate::plot`], docs/interface.md).
 //!
@@ -86,9 +87,10 @@ pub(crate) struct PlotArgs {
     /// Sweep: the column on the x axis.
     #[arg(long)]
     x: Option<String>,
-    /// Sweep: the column (indicator) on the y axis.
-    #[arg(long)]
-    y: Option<String>,
+    /// Sweep: the column (indicator) on the y axis; several (repeated or
+    /// comma-separated) of one unit share the axis, named in the legend.
+    #[arg(long, value_delimiter = ',', value_name = "COLUMN")]
+    y: Vec<String>,
     /// Sweep: one series per value of this column.
     #[arg(long)]
     series: Option<String>,
@@ -101,12 +103,26 @@ pub(crate) struct PlotArgs {
     /// Sweep: logarithmic y axis.
     #[arg(long)]
     log_y: bool,
-    /// Sweep: a horizontal reference line at this y (repeatable).
+    /// Sweep: a horizontal reference line at this y, in --y-unit if given
+    /// (repeatable).
     #[arg(long, value_name = "Y", allow_negative_numbers = true)]
     ref_y: Vec<f64>,
-    /// Sweep: a vertical reference line at this x (repeatable).
+    /// Sweep: a vertical reference line at this x, in --x-unit if given
+    /// (repeatable).
     #[arg(long, value_name = "X", allow_negative_numbers = true)]
     ref_x: Vec<f64>,
+    /// Sweep: the x axis in this unit (the column is in SI), e.g. ms, um,
+    /// mm/s, mN, kHz; reference lines are given in it.
+    #[arg(long, value_name = "UNIT")]
+    x_unit: Option<String>,
+    /// Sweep: the y axis in this unit, as --x-unit.
+    #[arg(long, value_name = "UNIT")]
+    y_unit: Option<String>,
+    /// Sweep: name COLUMN by TEXT (its description and symbol) on axes,
+    /// in legends and panel titles, e.g. 'v_inf=$v_∞$ at rest'
+    /// (repeatable; $...$ is a quantity: italic, _x subscript).
+    #[arg(long, value_name = "COLUMN=TEXT")]
+    label: Vec<String>,
     #[command(flatten)]
     options: SceneOptions,
     #[command(flatten)]
@@ -167,15 +183,28 @@ fn name_of(output: &Path) -> String {
 }
 
 fn sweep_plot(args: &PlotArgs) -> Result<Figure, Failure> {
-    let (Some(x), Some(y)) = (&args.x, &args.y) else {
+    let (Some(x), false) = (&args.x, args.y.is_empty()) else {
         return Err(format!(
             "{}: a sweep plot needs --x AXIS and --y INDICATOR",
             args.input.display()
         ));
     };
+    let labels = args
+        .label
+        .iter()
+        .map(|l| match l.split_once('=') {
+            Some((column, text)) if !column.trim().is_empty() => {
+                Ok((column.trim().to_owned(), text.to_owned()))
+            }
+            _ => Err(format!("--label {l}: expected COLUMN=TEXT")),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     let spec = SweepSpec {
         x: x.clone(),
-        y: y.clone(),
+        y: args.y.clone(),
+        labels,
+        x_unit: args.x_unit.clone(),
+        y_unit: args.y_unit.clone(),
         series: args.series.clone(),
         facet: args.facet.clone(),
         log_x: args.log_x,
@@ -189,9 +218,12 @@ fn sweep_plot(args: &PlotArgs) -> Result<Figure, Failure> {
 fn scene_plot(args: &PlotArgs, streams: &mut Streams<'_>) -> Result<Figure, Failure> {
     for (flag, given) in [
         ("--x", args.x.is_some()),
-        ("--y", args.y.is_some()),
+        ("--y", !args.y.is_empty()),
         ("--series", args.series.is_some()),
         ("--facet", args.facet.is_some()),
+        ("--x-unit", args.x_unit.is_some()),
+        ("--y-unit", args.y_unit.is_some()),
+        ("--label", !args.label.is_empty()),
     ] {
         if given {
             return Err(format!(

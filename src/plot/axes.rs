@@ -5,7 +5,8 @@
 //! about [`Axis::ticks`] of them inside the range; logarithmic ticks are
 //! powers of ten (and 2 and 5 times them on axes of at most three
 //! decades), with unlabelled minor ticks at the other integer multiples.
-//! Labels are compact (`0.25`, `−3`, `10⁻⁶`, `2.5×10⁶`).
+//! Labels are compact (`0.25`, `−3`, `10⁻⁶`, `2.5×10⁶`); a logarithmic
+//! axis within `[0.001, 10000]` is labelled in plain decimals.
 
 /// One axis of a panel.
 #[derive(Debug, Clone, PartialEq)]
@@ -223,10 +224,11 @@ fn log_ticks((lo, hi): (f64, f64)) -> Vec<Tick> {
 }
 
 /// A tick label of `m × 10^e`: plain when the whole axis lies in
-/// `[0.01, 10000]`, with a power of ten otherwise.
+/// `[0.001, 10000]` (`0.002`, `0.05`, `200`), with a power of ten
+/// otherwise.
 fn log_label(m: i32, e: i32, (lo, hi): (f64, f64)) -> String {
     let v = f64::from(m) * 10f64.powi(e);
-    if lo >= 0.999e-2 && hi <= 1.001e4 {
+    if lo >= 0.999e-3 && hi <= 1.001e4 {
         let s = format!("{v:.4}");
         return s.trim_end_matches('0').trim_end_matches('.').to_owned();
     }
@@ -321,6 +323,12 @@ mod tests {
         assert_eq!(
             labels(&a.tick_marks()),
             ["1", "2", "5", "10", "20", "50", "100"]
+        );
+        // Seconds of a start-up time read as decimals, not 5×10⁻².
+        let a = Axis::log("t", (1.5e-3, 0.06));
+        assert_eq!(
+            labels(&a.tick_marks()),
+            ["0.002", "0.005", "0.01", "0.02", "0.05"]
         );
     }
 

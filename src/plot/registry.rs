@@ -1,7 +1,8 @@
 //! Every figure the project draws, in one list: the figures in `plots/`
 //! (the paper's figures 2-9, the stroke scaling law, the event timeline,
 //! the characteristic and the optimiser's two figures), every
-//! `stickslip plot --figure` kind of a scene, a faceted sweep plot, the
+//! `stickslip plot --figure` kind of a scene, sweep plots (faceted; two
+//! columns on one axis; display units and a named column), the
 //! work-precision study (drawn from its committed data,
 //! `plots/work_precision.svg.csv`: its wall times are measured, so the
 //! data, not a run, is the input) and the `stickslip compare` figure of
@@ -111,7 +112,7 @@ pub const ALL: &[Entry] = &[
     entry("plot_sweep_faceted", |_| {
         let spec = SweepSpec {
             x: "harmonics".into(),
-            y: "v_inf".into(),
+            y: vec!["v_inf".into()],
             series: Some("level".into()),
             facet: Some("sigma".into()),
             ..SweepSpec::default()
@@ -121,6 +122,43 @@ pub const ALL: &[Entry] = &[
             "section-7 grid",
             &spec,
             "plot_sweep_faceted",
+        )
+    }),
+    entry("plot_sweep_two_columns", |_| {
+        // Two columns of one unit on one log axis in ms, per sigma.
+        let spec = SweepSpec {
+            x: "harmonics".into(),
+            y: vec!["startup_time".into(), "period".into()],
+            facet: Some("sigma".into()),
+            log_y: true,
+            y_unit: Some("ms".into()),
+            ..SweepSpec::default()
+        };
+        sweep_figure_from(
+            sweep_csv()?.as_bytes(),
+            "section-7 grid",
+            &spec,
+            "plot_sweep_two_columns",
+        )
+    }),
+    entry("plot_sweep_units", |_| {
+        // A log axis in ms with a reference line, and a column named by
+        // the user.
+        let spec = SweepSpec {
+            x: "level".into(),
+            y: vec!["startup_time".into()],
+            series: Some("harmonics".into()),
+            log_y: true,
+            y_unit: Some("ms".into()),
+            ref_y: vec![10.0],
+            labels: vec![("level".into(), "level $L$ = $n$√$κ$".into())],
+            ..SweepSpec::default()
+        };
+        sweep_figure_from(
+            sweep_csv()?.as_bytes(),
+            "section-7 grid",
+            &spec,
+            "plot_sweep_units",
         )
     }),
 ];
@@ -177,11 +215,13 @@ fn grid() -> Result<&'static [GridPoint], PlotError> {
 
 /// The section-7 grid as a sweep output.
 fn sweep_csv() -> Result<String, PlotError> {
-    let mut csv = String::from("case,level,harmonics,sigma,v_inf,regime,failure\n");
+    let mut csv =
+        String::from("case,level,harmonics,sigma,v_inf,startup_time,period,regime,failure\n");
     for (i, p) in grid()?.iter().enumerate() {
+        let startup = p.startup_time().map_or(String::new(), |t| t.to_string());
         csv.push_str(&format!(
-            "{i},{},{},{},{},,\n",
-            p.level, p.n, p.sigma, p.v_inf
+            "{i},{},{},{},{},{startup},{},,\n",
+            p.level, p.n, p.sigma, p.v_inf, p.period
         ));
     }
     Ok(csv)

@@ -1,22 +1,37 @@
-//! Any sweep output as a figure: an indicator (`--y`) against an axis
-//! (`--x`), one series per value of `--series`, one panel per value of
-//! `--facet`, optional log axes and reference lines.
+//! Any sweep output as a figure: one or more indicators (`--y`) against
+//! an axis (`--x`), one series per value of `--series`, one panel per
+//! value of `--facet`, optional log axes, reference lines, display units
+//! and names given to columns.
 //!
 //! Contract: the CSV is a sweep output (docs/interface.md section 5: `#`
 //! comment lines, a header, one row per case), ours or another tool's with
-//! the same columns. Every named column must exist (an unknown one is an
-//! error listing the columns). A row whose `--y` cell is empty is never
-//! dropped: it is drawn as a marker on the panel's bottom edge at its x,
-//! by reason — `failure` text (failed), a `regime` that is not a steady
-//! one (`run-away`, `not_converged`), or no value — and so is a value a
-//! log axis cannot show. A series whose x values repeat (other axes vary)
-//! is drawn as points, not as a line zig-zagging between them.
+//! the same columns, its values in SI. Every named column must exist (an
+//! unknown one is an error listing the columns). Columns are named from
+//! the table of symbols (`src/symbol.rs`) unless [`SweepSpec::labels`]
+//! names them; a switch's series or panels read "with …"/"without …",
+//! numbers have at most four significant digits. An axis is drawn in SI
+//! or in the display unit asked for ([`UNITS`]), which must measure what
+//! its column measures (a ratio takes none; an undocumented column is
+//! taken to be in SI); the drawn values, and the CSV written beside the
+//! figure (its header names the unit), are the SI values times the
+//! unit's factor. Several `--y` columns (each once) share one unit and one
+//! axis, each named in the legend by its description and symbol; with
+//! `--series` their legend entries are the pairs (symbol, value), at most
+//! as many as the palette has colours. A row
+//! whose `--y` cell is empty is never dropped: it is drawn as a marker on
+//! the panel's bottom edge at its x, by reason — `failure` text (failed),
+//! a `regime` that is not a steady one (`run-away`, `not_converged`), or
+//! no value — and so is a value a log axis cannot show. A series whose x
+//! values repeat (other axes vary) is drawn as points, not as a line
+//! zig-zagging between them.
+
+mod names;
 
 use super::layout::fitted;
 use super::style::{Dash, GREY, Look, Marker, PALETTE};
 use super::{Axis, Cell, Csv, Figure, Panel, Plot, PlotError, Preset, Series};
-use crate::indicator::Indicator;
-use crate::symbol::symbol;
+use names::{Names, display_unit, number, si_unit};
+pub use names::{UNITS, Unit};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -25,8 +40,9 @@ use std::path::Path;
 pub struct SweepSpec {
     /// Column on the horizontal axis.
     pub x: String,
-    /// Column on the vertical axis.
-    pub y: String,
+    /// Columns on the vertical axis: one, or several of one unit (drawn
+    /// on one axis, told apart by the legend).
+    pub y: Vec<String>,
     /// Column whose values make the series.
     pub series: Option<String>,
     /// Column whose values make the panels.
@@ -35,66 +51,25 @@ pub struct SweepSpec {
     pub log_x: bool,
     /// Logarithmic y axis.
     pub log_y: bool,
-    /// Horizontal reference lines at these y values.
+    /// Horizontal reference lines at these y values (in the y axis's
+    /// display unit).
     pub ref_y: Vec<f64>,
-    /// Vertical reference lines at these x values.
+    /// Vertical reference lines at these x values (in the x axis's
+    /// display unit).
     pub ref_x: Vec<f64>,
+    /// Names given to columns (column, text in the quantity markup): they
+    /// replace the table of symbols' description and symbol wherever the
+    /// column is named (axis, legend, panel title); units stay.
+    pub labels: Vec<(String, String)>,
+    /// The x axis's display unit (`ms`, `µm`, `mm/s`; see [`UNITS`]); the
+    /// column holds SI values.
+    pub x_unit: Option<String>,
+    /// The y axis's display unit, as `x_unit`.
+    pub y_unit: Option<String>,
 }
 
 /// Regimes with a steady state (docs/interface.md, `regime`).
 const STEADY_REGIMES: [&str; 3] = ["stuck", "stick-slip", "slip-slip"];
-
-/// Units of the documented columns the table of symbols does not name,
-/// for axis labels.
-fn unit(column: &str) -> Option<&'static str> {
-    if let Ok(indicator) = column.parse::<Indicator>() {
-        return Some(indicator.unit()).filter(|u| *u != "1");
-    }
-    Some(match column {
-        "error_v_inf" => "m/s",
-        "period" | "wall_time_s" => "s",
-        "apparent_power" => "VA",
-        "stroke" => "m",
-        "contact_force" => "N",
-        "slider_mass" => "kg",
-        "extra_acceleration" => "m/s²",
-        _ => return None,
-    })
-}
-
-/// A column's name as words (another tool's column, not in the table of
-/// symbols): underscores become spaces.
-fn words(column: &str) -> String {
-    column.replace('_', " ")
-}
-
-/// The axis label of a column: description, symbol and unit from the
-/// table of symbols, or the column's name in words and its unit.
-fn axis_label(column: &str) -> String {
-    if let Some(s) = symbol(column) {
-        return s.label();
-    }
-    match unit(column) {
-        Some(u) => format!("{} ({u})", words(column)),
-        None => words(column),
-    }
-}
-
-/// How a series or facet of `column` = `value` is named: "with" or
-/// "without" for a switch, the symbol (or the column in words) and the
-/// value otherwise.
-fn value_label(column: &str, value: &str) -> String {
-    let sym = symbol(column);
-    let what = sym.map_or_else(|| words(column), |s| s.description.to_owned());
-    match value {
-        "true" if !what.is_empty() => format!("with {what}"),
-        "false" if !what.is_empty() => format!("without {what}"),
-        _ => format!(
-            "{} = {value}",
-            sym.map_or_else(|| words(column), |s| s.quantity.to_owned())
-        ),
-    }
-}
 
 /// Why a row has no point on the plot.
 #[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -135,10 +110,10 @@ impl Flag {
     }
 }
 
-/// One row as plotted.
+/// One row as plotted: x and each `--y` value in drawn units.
 struct Row {
     x: f64,
-    y: Result<f64, Flag>,
+    ys: Vec<Result<f64, Flag>>,
     series: String,
     facet: String,
 }
@@ -161,7 +136,7 @@ fn column_index(
 
 /// Reads the sweep output at `path` and draws it as `spec` says.
 pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure, PlotError> {
-    check_references(spec)?;
+    check_spec(spec)?;
     let file = std::fs::File::open(path)
         .map_err(|e| PlotError::Argument(format!("{}: {e}", path.display())))?;
     sweep_figure_from(
@@ -172,8 +147,47 @@ pub fn sweep_figure(path: &Path, spec: &SweepSpec, name: &str) -> Result<Figure,
     )
 }
 
-/// Reference lines are finite, and positive on a log axis.
-fn check_references(spec: &SweepSpec) -> Result<(), PlotError> {
+/// What can be checked before the data is read: at least one `--y`,
+/// several of one unit, units that fit their columns, labels in closed
+/// markup, and reference lines finite (and positive on a log axis).
+fn check_spec(spec: &SweepSpec) -> Result<Axes, PlotError> {
+    if spec.y.is_empty() {
+        return Err(PlotError::Argument(
+            "--y: a sweep plot needs at least one column".to_owned(),
+        ));
+    }
+    let repeated = spec
+        .y
+        .iter()
+        .enumerate()
+        .find(|(i, c)| spec.y[..*i].contains(c));
+    if let Some((_, twice)) = repeated {
+        return Err(PlotError::Argument(format!(
+            "--y {}: names {twice} twice",
+            spec.y.join(",")
+        )));
+    }
+    let units: Vec<Option<&str>> = spec.y.iter().map(|c| si_unit(c)).collect();
+    if units.iter().any(|u| *u != units[0]) {
+        let each: Vec<String> = spec
+            .y
+            .iter()
+            .zip(&units)
+            .map(|(c, u)| format!("{c} in {}", u.unwrap_or("an unknown unit")))
+            .collect();
+        return Err(PlotError::Argument(format!(
+            "--y {}: columns on one axis share a unit, and these are {}",
+            spec.y.join(","),
+            each.join(", ")
+        )));
+    }
+    for (column, text) in &spec.labels {
+        if text.trim().is_empty() || text.matches('$').count() % 2 != 0 {
+            return Err(PlotError::Argument(format!(
+                "--label {column}={text}: the text must be non-empty with each $ closed"
+            )));
+        }
+    }
     for (log, flag, refs) in [
         (spec.log_x, "--ref-x", &spec.ref_x),
         (spec.log_y, "--ref-y", &spec.ref_y),
@@ -184,7 +198,26 @@ fn check_references(spec: &SweepSpec) -> Result<(), PlotError> {
             )));
         }
     }
-    Ok(())
+    let (x_scale, x_unit) = display_unit(
+        "--x-unit",
+        spec.x_unit.as_deref(),
+        std::slice::from_ref(&spec.x),
+    )?;
+    let (y_scale, y_unit) = display_unit("--y-unit", spec.y_unit.as_deref(), &spec.y)?;
+    Ok(Axes {
+        x_scale,
+        x_unit,
+        y_scale,
+        y_unit,
+    })
+}
+
+/// The factors from SI to drawn values and the units shown.
+struct Axes {
+    x_scale: f64,
+    x_unit: Option<&'static str>,
+    y_scale: f64,
+    y_unit: Option<&'static str>,
 }
 
 /// Draws the sweep output read from `input` (named `path` in messages)
@@ -195,14 +228,18 @@ pub fn sweep_figure_from(
     spec: &SweepSpec,
     name: &str,
 ) -> Result<Figure, PlotError> {
-    check_references(spec)?;
+    let axes = check_spec(spec)?;
     let mut reader = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
         .from_reader(input);
     let bad_csv = |e: csv::Error| PlotError::Argument(format!("{}: not a sweep CSV: {e}", path));
     let headers = reader.headers().map_err(bad_csv)?.clone();
     let ix = column_index(&headers, &spec.x, "--x", path)?;
-    let iy = column_index(&headers, &spec.y, "--y", path)?;
+    let iys = spec
+        .y
+        .iter()
+        .map(|y| column_index(&headers, y, "--y", path))
+        .collect::<Result<Vec<_>, _>>()?;
     let is = spec
         .series
         .as_deref()
@@ -213,6 +250,9 @@ pub fn sweep_figure_from(
         .as_deref()
         .map(|s| column_index(&headers, s, "--facet", path))
         .transpose()?;
+    for (column, _) in &spec.labels {
+        column_index(&headers, column, "--label", path)?;
+    }
     let ifail = headers.iter().position(|h| h == "failure");
     let iregime = headers.iter().position(|h| h == "regime");
     let mut rows = Vec::new();
@@ -245,20 +285,23 @@ pub fn sweep_figure_from(
                 path, spec.x
             )));
         };
-        let y = match number(iy, &spec.y)? {
-            Some(v) if spec.log_y && v <= 0.0 => Err(Flag::OffLogAxis),
-            Some(v) => Ok(v),
-            None => Err(if ifail.is_some_and(|i| !cell(i).is_empty()) {
-                Flag::Failed
-            } else if let Some(r) = iregime
-                .map(cell)
-                .filter(|r| !r.is_empty() && !STEADY_REGIMES.contains(r))
-            {
-                Flag::Unsettled(r.to_owned())
-            } else {
-                Flag::NoValue
-            }),
-        };
+        let mut ys = Vec::with_capacity(iys.len());
+        for (&iy, column) in iys.iter().zip(&spec.y) {
+            ys.push(match number(iy, column)? {
+                Some(v) if spec.log_y && v <= 0.0 => Err(Flag::OffLogAxis),
+                Some(v) => Ok(v * axes.y_scale),
+                None => Err(if ifail.is_some_and(|i| !cell(i).is_empty()) {
+                    Flag::Failed
+                } else if let Some(r) = iregime
+                    .map(cell)
+                    .filter(|r| !r.is_empty() && !STEADY_REGIMES.contains(r))
+                {
+                    Flag::Unsettled(r.to_owned())
+                } else {
+                    Flag::NoValue
+                }),
+            });
+        }
         if spec.log_x && x <= 0.0 {
             return Err(PlotError::Argument(format!(
                 "--log-x: {}: data row {line}: {} = {x} is not positive",
@@ -266,8 +309,8 @@ pub fn sweep_figure_from(
             )));
         }
         rows.push(Row {
-            x,
-            y,
+            x: x * axes.x_scale,
+            ys,
             series: is.map(|i| cell(i).to_owned()).unwrap_or_default(),
             facet: ifacet.map(|i| cell(i).to_owned()).unwrap_or_default(),
         });
@@ -275,7 +318,7 @@ pub fn sweep_figure_from(
     if rows.is_empty() {
         return Err(PlotError::Argument(format!("{}: no data rows", path)));
     }
-    draw(rows, spec, name, path)
+    draw(rows, spec, &axes, name, path)
 }
 
 /// Distinct values in order: numerically when all are numbers, else in
@@ -298,14 +341,55 @@ fn distinct<'a>(values: impl Iterator<Item = &'a str>) -> Vec<String> {
     seen
 }
 
-fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &str) -> Result<Figure, PlotError> {
+/// The legend entry of reference lines at `values` of `columns` drawn in
+/// `unit`: the quantity and its values (`$v_∞$ = 0.06 m/s`).
+fn reference_label(
+    names: &Names,
+    columns: &[String],
+    values: &[f64],
+    unit: Option<&str>,
+) -> String {
+    let what = match columns {
+        [one] => names.short(one),
+        _ => "reference".to_owned(),
+    };
+    let values: Vec<String> = values.iter().map(|v| number(*v)).collect();
+    let unit = unit.map_or(String::new(), |u| format!(" {u}"));
+    format!("{what} = {}{unit}", values.join(", "))
+}
+
+fn draw(
+    rows: Vec<Row>,
+    spec: &SweepSpec,
+    axes: &Axes,
+    name: &str,
+    path: &str,
+) -> Result<Figure, PlotError> {
+    let names = Names {
+        labels: &spec.labels,
+    };
     let facets = distinct(rows.iter().map(|r| r.facet.as_str()));
     let series = distinct(rows.iter().map(|r| r.series.as_str()));
-    let mut flags: Vec<Flag> = rows.iter().filter_map(|r| r.y.clone().err()).collect();
+    if let Some(col) = spec.series.as_deref()
+        && spec.y.len() > 1
+        && spec.y.len() * series.len() > PALETTE.len()
+    {
+        return Err(PlotError::Argument(format!(
+            "--series {col}: {} --y columns times {} values make {} legend entries, more than {} told apart by colour; use --facet {col}, or one --y",
+            spec.y.len(),
+            series.len(),
+            spec.y.len() * series.len(),
+            PALETTE.len()
+        )));
+    }
+    let mut flags: Vec<Flag> = rows
+        .iter()
+        .flat_map(|r| r.ys.iter().filter_map(|y| y.clone().err()))
+        .collect();
     flags.sort();
     flags.dedup();
     let mut x_axis = fitted(
-        &axis_label(&spec.x),
+        &names.axis(std::slice::from_ref(&spec.x), axes.x_unit),
         rows.iter().map(|r| r.x).chain(spec.ref_x.iter().copied()),
         spec.log_x,
         0.04,
@@ -315,10 +399,10 @@ fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &str) -> Result<Figu
     }
     let ys = rows
         .iter()
-        .filter_map(|r| r.y.as_ref().ok().copied())
+        .flat_map(|r| r.ys.iter().filter_map(|y| y.as_ref().ok().copied()))
         .chain(spec.ref_y.iter().copied());
-    let mut y_axis = fitted(&axis_label(&spec.y), ys, spec.log_y, 0.06);
-    if rows.iter().all(|r| r.y.is_err()) && spec.ref_y.is_empty() {
+    let mut y_axis = fitted(&names.axis(&spec.y, axes.y_unit), ys, spec.log_y, 0.06);
+    if rows.iter().all(|r| r.ys.iter().all(Result::is_err)) && spec.ref_y.is_empty() {
         y_axis = if spec.log_y {
             Axis::log(&y_axis.label, (1.0, 10.0))
         } else {
@@ -326,91 +410,132 @@ fn draw(rows: Vec<Row>, spec: &SweepSpec, name: &str, path: &str) -> Result<Figu
         };
     }
     let bottom = y_axis.range.0;
+    let header = |axis: &str, unit: Option<&str>| match unit {
+        Some(u) => format!("{axis} ({u})"),
+        None => axis.to_owned(),
+    };
+    let in_unit = |unit: Option<&str>| unit.map_or(String::new(), |u| format!(" in {u}"));
     let mut csv = Csv::new(
         &[
-            &format!("Sweep plot of {}: {} against {}.", path, spec.y, spec.x),
+            &format!(
+                "Sweep plot of {}: {}{} against {}{}.",
+                path,
+                spec.y.join(", "),
+                in_unit(axes.y_unit),
+                spec.x,
+                in_unit(axes.x_unit)
+            ),
             "status: ok, or why the row has no point (failed; its regime without a steady state, e.g. run-away; no value; off the log axis); such rows are drawn on the bottom edge.",
         ],
-        &["facet", "series", "x", "y", "status"],
+        &[
+            "facet",
+            "series",
+            "y_column",
+            &header("x", axes.x_unit),
+            &header("y", axes.y_unit),
+            "status",
+        ],
     );
     for r in &rows {
-        let (y, status) = match &r.y {
-            Ok(v) => (Cell::F(*v), "ok".to_owned()),
-            Err(f) => (Cell::S(""), f.label()),
-        };
-        csv.row(&[
-            Cell::S(&r.facet),
-            Cell::S(&r.series),
-            Cell::F(r.x),
-            y,
-            Cell::S(&status),
-        ]);
+        for (column, y) in spec.y.iter().zip(&r.ys) {
+            let (y, status) = match y {
+                Ok(v) => (Cell::F(*v), "ok".to_owned()),
+                Err(f) => (Cell::S(""), f.label()),
+            };
+            csv.row(&[
+                Cell::S(&r.facet),
+                Cell::S(&r.series),
+                Cell::S(column),
+                Cell::F(r.x),
+                y,
+                Cell::S(&status),
+            ]);
+        }
     }
     let mut panels = Vec::new();
     let mut points_only = false;
     for facet in &facets {
-        let title = spec.facet.as_ref().map(|f| value_label(f, facet));
+        let title = spec.facet.as_ref().map(|f| names.value(f, facet));
         let mut panel = Panel::new(title.as_deref(), x_axis.clone(), y_axis.clone());
-        for &ry in &spec.ref_y {
-            panel.series.push(Series::hline(
-                Some("reference"),
-                ry,
-                x_axis.range,
-                Look::reference(),
-            ));
-        }
-        for &rx in &spec.ref_x {
-            panel.series.push(Series::line(
-                Some("reference"),
-                vec![(rx, y_axis.range.0), (rx, y_axis.range.1)],
-                Look::reference(),
-            ));
-        }
-        for (i, s) in series.iter().enumerate() {
-            let mut pts: Vec<(f64, f64)> = rows
-                .iter()
-                .filter(|r| &r.facet == facet && &r.series == s)
-                .filter_map(|r| r.y.as_ref().ok().map(|y| (r.x, *y)))
-                .collect();
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let repeated = pts.windows(2).any(|w| w[0].0 == w[1].0);
-            points_only |= repeated;
-            let label = match &spec.series {
-                Some(col) => value_label(col, s),
-                None => symbol(&spec.y).map_or_else(|| words(&spec.y), |s| s.quantity.to_owned()),
-            };
-            let mut look = Look::nth(i);
-            if (repeated || pts.len() <= 40) && look.marker == Marker::None {
-                look.marker = [
-                    Marker::Circle,
-                    Marker::Square,
-                    Marker::Triangle,
-                    Marker::Diamond,
-                ][i % 4];
-            }
-            if repeated {
-                panel.series.push(Series::points(
+        if !spec.ref_y.is_empty() {
+            let label = reference_label(&names, &spec.y, &spec.ref_y, axes.y_unit);
+            for &ry in &spec.ref_y {
+                panel.series.push(Series::hline(
                     Some(&label),
-                    pts,
+                    ry,
+                    x_axis.range,
+                    Look::reference(),
+                ));
+            }
+        }
+        if !spec.ref_x.is_empty() {
+            let label = reference_label(
+                &names,
+                std::slice::from_ref(&spec.x),
+                &spec.ref_x,
+                axes.x_unit,
+            );
+            for &rx in &spec.ref_x {
+                panel.series.push(Series::line(
+                    Some(&label),
+                    vec![(rx, y_axis.range.0), (rx, y_axis.range.1)],
                     Look {
-                        dash: Dash::NoLine,
-                        ..look
+                        dash: Dash::Dotted,
+                        ..Look::reference()
                     },
                 ));
-            } else {
-                panel.series.push(Series::line(Some(&label), pts, look));
+            }
+        }
+        for (k, column) in spec.y.iter().enumerate() {
+            for (j, s) in series.iter().enumerate() {
+                let i = k * series.len() + j;
+                let mut pts: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| &r.facet == facet && &r.series == s)
+                    .filter_map(|r| r.ys[k].as_ref().ok().map(|y| (r.x, *y)))
+                    .collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                let repeated = pts.windows(2).any(|w| w[0].0 == w[1].0);
+                points_only |= repeated;
+                let label = match (&spec.series, spec.y.len()) {
+                    (Some(col), 1) => names.value(col, s),
+                    (Some(col), _) => format!("{}, {}", names.short(column), names.value(col, s)),
+                    (None, 1) => names.short(column),
+                    (None, _) => names.long(column),
+                };
+                let mut look = Look::nth(i);
+                if (repeated || pts.len() <= 40) && look.marker == Marker::None {
+                    look.marker = [
+                        Marker::Circle,
+                        Marker::Square,
+                        Marker::Triangle,
+                        Marker::Diamond,
+                    ][i % 4];
+                }
+                if repeated {
+                    panel.series.push(Series::points(
+                        Some(&label),
+                        pts,
+                        Look {
+                            dash: Dash::NoLine,
+                            ..look
+                        },
+                    ));
+                } else {
+                    panel.series.push(Series::line(Some(&label), pts, look));
+                }
             }
         }
         for (k, flag) in flags.iter().enumerate() {
-            let pts: Vec<(f64, f64)> = rows
+            // A row flagged in several `--y` columns is one marker.
+            let flagged = |r: &Row| r.ys.iter().any(|y| y.as_ref().err() == Some(flag));
+            let mut pts: Vec<(f64, f64)> = rows
                 .iter()
-                .filter(|r| &r.facet == facet && r.y.as_ref().err() == Some(flag))
+                .filter(|r| &r.facet == facet && flagged(r))
                 .map(|r| (r.x, bottom))
                 .collect();
-            let count = rows
-                .iter()
-                .filter(|r| r.y.as_ref().err() == Some(flag))
-                .count();
+            pts.dedup();
+            let count = rows.iter().filter(|r| flagged(r)).count();
             let label = format!("{} ({count}, at the bottom)", flag.label());
             panel
                 .series
