@@ -4,7 +4,9 @@
 //! Contract: linear ticks are multiples of 1, 2 or 5 times a power of ten,
 //! about [`Axis::ticks`] of them inside the range; logarithmic ticks are
 //! powers of ten (and 2 and 5 times them on axes of at most three
-//! decades), with unlabelled minor ticks at the other integer multiples.
+//! decades), with unlabelled minor ticks at the other integer multiples;
+//! an axis too short to hold two of those labels labels every integer
+//! multiple.
 //! Labels are compact (`0.25`, `−3`, `10⁻⁶`, `2.5×10⁶`); a logarithmic
 //! axis within `[0.001, 10000]` is labelled in plain decimals.
 
@@ -220,6 +222,15 @@ fn log_ticks((lo, hi): (f64, f64)) -> Vec<Tick> {
             out.push(Tick { value: v, label });
         }
     }
+    // An axis of less than a decade may hold one labelled tick or none:
+    // then every integer multiple is labelled, so the scale can be read.
+    if out.iter().filter(|t| !t.label.is_empty()).count() < 2 {
+        for t in &mut out {
+            let e = t.value.log10().floor() as i32;
+            let m = (t.value / 10f64.powi(e)).round() as i32;
+            t.label = log_label(m, e, (lo, hi));
+        }
+    }
     out
 }
 
@@ -329,6 +340,20 @@ mod tests {
         assert_eq!(
             labels(&a.tick_marks()),
             ["0.002", "0.005", "0.01", "0.02", "0.05"]
+        );
+    }
+
+    #[test]
+    fn a_log_axis_shorter_than_its_labels_labels_every_multiple() {
+        // 3e-4 to 1.5e-3 holds only 5e-4 and 1e-3 of 1, 2, 5: with the
+        // limit of two labels met it keeps them; 3.2e-4 to 9e-4 holds only
+        // 5e-4, so every multiple is labelled.
+        let a = Axis::log("e", (3.0e-4, 1.5e-3));
+        assert_eq!(labels(&a.tick_marks()), ["5×10⁻⁴", "10⁻³"]);
+        let a = Axis::log("e", (3.2e-4, 9.0e-4));
+        assert_eq!(
+            labels(&a.tick_marks()),
+            ["4×10⁻⁴", "5×10⁻⁴", "6×10⁻⁴", "7×10⁻⁴", "8×10⁻⁴", "9×10⁻⁴"]
         );
     }
 

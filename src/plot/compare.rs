@@ -287,7 +287,7 @@ pub fn figure(
             ]);
         }
         panel.series.push(Series::points(
-            Some("step-size part, one file"),
+            Some("$v_∞$ error, one point per file"),
             steps.iter().map(|s| (s.0, s.1)).collect(),
             Look::nth_points(0).with_marker(Marker::Circle),
         ));

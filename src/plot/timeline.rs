@@ -334,7 +334,9 @@ pub fn event_timeline(base: &Scene) -> Result<Figure, PlotError> {
 }
 
 /// A raster of the slider's modes, one row per period from `p = 1`, with
-/// `p_0.99` marked.
+/// `p_0.99` marked. Beside a panel of the slider's curves (`title` given),
+/// whose legend names the same modes, the raster's entries say
+/// `raster: `; alone, they name the mode only.
 fn raster(
     title: Option<&str>,
     tl: &Timeline,
@@ -366,7 +368,10 @@ fn raster(
             .collect();
         if !rects.is_empty() {
             b.series.push(Series::bands(
-                Some(&format!("raster: {}", mode_label(mode))),
+                Some(&match title {
+                    Some(_) => format!("raster: {}", mode_label(mode)),
+                    None => mode_label(mode).to_owned(),
+                }),
                 rects,
                 mode_look(mode),
             ));
