@@ -50,8 +50,10 @@ fn main() -> Result<()> {
     );
     let mut written = 0;
     for entry in ALL {
-        // The figure in its own preset, unless one is asked for.
-        let own: Figure = (entry.make)(Preset::SingleColumn)?;
+        // The figure in its own preset, unless one is asked for; a figure
+        // laid out for whichever preset it is given is written at double
+        // column.
+        let own: Figure = (entry.make)(Preset::DoubleColumn)?;
         let preset = args
             .style
             .as_deref()

@@ -39,6 +39,7 @@ use std::fmt::Write as _;
 use std::time::Instant;
 use stickslip::PeriodEngine;
 use stickslip::RunReport;
+use stickslip::plot::Preset;
 use stickslip::plot::precision::{self, Method, PAPER_STEPS, Run, SCENES};
 use stickslip::{EventEngine, EventOptions};
 use stickslip::{FixedStepEngine, FixedStepOptions};
@@ -179,7 +180,8 @@ fn main() {
     // The figure is registered (`stickslip::plot::registry`) and drawn
     // there from the committed data; the reviewer's test checks it in
     // every preset.
-    let figure = precision::figure(&points).expect("the study's runs make the figure");
+    let figure =
+        precision::figure(&points, Preset::DoubleColumn).expect("the study's runs make the figure");
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("plots");
     figure.write_to(&dir).expect("plots/ is writable");
     println!("wrote plots/work_precision.svg and plots/work_precision.svg.csv");

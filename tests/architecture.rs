@@ -13,7 +13,14 @@ use std::path::{Path, PathBuf};
 
 /// The layers, bottom first: a module may use modules of lower layers only.
 const LAYERS: &[&[&str]] = &[
-    &["error", "numerics", "interrupt", "symbol", "plural", "csv_text"],
+    &[
+        "error",
+        "numerics",
+        "interrupt",
+        "symbol",
+        "plural",
+        "csv_text",
+    ],
     &["output"],
     &["motor"],
     &["signal"],

@@ -300,8 +300,11 @@ fn decades(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
     (10f64.powf(a), 10f64.powf(b.max(a + 1.0)))
 }
 
-/// The work-precision figure of `runs` (see the module doc).
-pub fn figure(runs: &[Run]) -> Result<Figure, PlotError> {
+/// The work-precision figure of `runs` (see the module doc) laid out for
+/// `preset`: its two panels side by side, or stacked in a single column,
+/// where side by side they would leave the seven legend entries a third
+/// of the height.
+pub fn figure(runs: &[Run], preset: Preset) -> Result<Figure, PlotError> {
     let index = |r: &Run| SCENES.iter().position(|s| s.key == r.scene);
     if let Some(r) = runs.iter().find(|r| index(r).is_none()) {
         return Err(PlotError::Data {
@@ -384,7 +387,8 @@ pub fn figure(runs: &[Run]) -> Result<Figure, PlotError> {
         "Event errors are bounds; wall times are medians and machine dependent.".to_owned(),
     ];
     notes.extend(zero_startup_note(runs));
-    let mut plot = Plot::grid(vec![v, startup], 2, 0.8).with_notes(notes);
+    let columns = if preset == Preset::SingleColumn { 1 } else { 2 };
+    let mut plot = Plot::grid(vec![v, startup], columns, 0.8).with_notes(notes);
     plot.legend.push(LegendEntry {
         label: format!("reference at {PAPER_STEPS} steps (paper)"),
         look: Look {
@@ -397,7 +401,7 @@ pub fn figure(runs: &[Run]) -> Result<Figure, PlotError> {
         name: NAME.to_owned(),
         plot,
         csv: csv(runs),
-        preset: Preset::DoubleColumn,
+        preset,
     })
 }
 

@@ -106,8 +106,8 @@ pub const ALL: &[Entry] = &[
         // 1200 periods (the start-up is over).
         compare::reference_figure(&Scene::default(), &[500, 5000], 1200, "compare_reference")
     }),
-    entry(precision::NAME, |_| {
-        precision::figure(&precision::committed()?)
+    entry(precision::NAME, |preset| {
+        precision::figure(&precision::committed()?, preset)
     }),
     entry("plot_sweep_faceted", |_| {
         let spec = SweepSpec {

@@ -513,14 +513,11 @@ fn draw(
                     ][i % 4];
                 }
                 if repeated {
-                    panel.series.push(Series::points(
-                        Some(&label),
-                        pts,
-                        Look {
-                            dash: Dash::NoLine,
-                            ..look
-                        },
-                    ));
+                    // Points only: the markers, not the dashes, tell the
+                    // series apart (six shapes before one repeats).
+                    panel
+                        .series
+                        .push(Series::points(Some(&label), pts, Look::nth_points(i)));
                 } else {
                     panel.series.push(Series::line(Some(&label), pts, look));
                 }
