@@ -48,29 +48,15 @@ create_exception!(
     "A run that could not finish (for example: it reached its time limit)."
 );
 
-/// A message as one line, as the command line prints it: line breaks
-/// become spaces, other control characters are escaped.
-fn one_line(message: &str) -> String {
-    let mut out = String::with_capacity(message.len());
-    for c in message.chars() {
-        match c {
-            '\n' => out.push(' '),
-            c if c.is_control() => out.extend(c.escape_debug()),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
 fn scene_error(message: impl std::fmt::Display) -> PyErr {
-    SceneError::new_err(one_line(&message.to_string()))
+    SceneError::new_err(stickslip::cli::one_line(&message.to_string()))
 }
 
 /// A library error: input errors are `SceneError`, a run that could not
 /// finish `SimulationError`.
 fn library_error(e: Error) -> PyErr {
     match e {
-        Error::Simulation(_) => SimulationError::new_err(one_line(&e.to_string())),
+        Error::Simulation(_) => SimulationError::new_err(stickslip::cli::one_line(&e.to_string())),
         _ => scene_error(e),
     }
 }

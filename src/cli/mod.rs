@@ -144,7 +144,7 @@ where
 /// control character (a carriage return quoted from a scene line) is
 /// written escaped (`\r`), so that the message stays one line on any
 /// terminal.
-pub(crate) fn one_line(message: &str) -> String {
+pub fn one_line(message: &str) -> String {
     let mut out = String::with_capacity(message.len());
     for c in message.chars() {
         match c {

@@ -224,6 +224,20 @@ pub(crate) fn region_at_least(grid: &Grid, level: f64) -> Vec<Vec<(f64, f64)>> {
     out
 }
 
+/// Shoelace area of a polygon, positive counterclockwise: what the tests
+/// of the contours and of the figures drawn from them measure.
+#[cfg(test)]
+pub(crate) fn area(polygon: &[(f64, f64)]) -> f64 {
+    let n = polygon.len();
+    (0..n)
+        .map(|k| {
+            let (a, b) = (polygon[k], polygon[(k + 1) % n]);
+            a.0 * b.1 - b.0 * a.1
+        })
+        .sum::<f64>()
+        / 2.0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -240,18 +254,6 @@ mod tests {
             .flat_map(|&y| xs.iter().map(move |&x| (x, y)))
             .map(|(x, y)| f(x, y))
             .collect()
-    }
-
-    /// Shoelace area, positive counterclockwise.
-    fn area(polygon: &[(f64, f64)]) -> f64 {
-        let n = polygon.len();
-        (0..n)
-            .map(|k| {
-                let (a, b) = (polygon[k], polygon[(k + 1) % n]);
-                a.0 * b.1 - b.0 * a.1
-            })
-            .sum::<f64>()
-            / 2.0
     }
 
     /// Whether the open segments `p q` and `r s` cross.

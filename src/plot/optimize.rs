@@ -319,6 +319,7 @@ pub fn map_figure(map: &Map, name: &str) -> Result<Figure, PlotError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numerics::contour::area;
     use crate::optimize::map::{MapGrid, MapPoint};
 
     /// `v_inf = 0.3 r cos(psi)` (m/s) on a grid of 21 ratios by 24
@@ -359,18 +360,6 @@ mod tests {
 
     fn panel(figure: &Figure) -> &Panel {
         &figure.plot.panels[0]
-    }
-
-    /// Shoelace area, positive counterclockwise.
-    fn area(polygon: &[(f64, f64)]) -> f64 {
-        let n = polygon.len();
-        (0..n)
-            .map(|k| {
-                let (a, b) = (polygon[k], polygon[(k + 1) % n]);
-                a.0 * b.1 - b.0 * a.1
-            })
-            .sum::<f64>()
-            / 2.0
     }
 
     #[test]
