@@ -15,7 +15,7 @@ fn main() {
     let data = dir.join("samples.csv");
     let times = dir.join("times.csv");
     let scene = stickslip::Scene::default();
-    let (signal, _) = stickslip::build(&scene).expect("default scene");
+    let stickslip::scene::BuiltScene { signal, motor: _ } = scene.build().expect("default scene");
     let samples = 1_000_000u32;
     let h = 100.0 * signal.period() / f64::from(samples);
     let mut text = String::from("t\n");

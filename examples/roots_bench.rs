@@ -15,10 +15,10 @@ use std::time::Instant;
 
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
-use stickslip::FourierSignal;
-use stickslip::Motor;
+use stickslip::motor::Motor;
 use stickslip::numerics::TrigPoly;
-use stickslip::{Drive, IdealShape};
+use stickslip::signal::FourierSignal;
+use stickslip::{signal::Drive, signal::IdealShape};
 
 fn median(mut xs: Vec<f64>) -> f64 {
     xs.sort_by(f64::total_cmp);

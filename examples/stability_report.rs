@@ -13,8 +13,10 @@ use stability::{catalogue, period_cost, run_case};
 fn main() {
     // Engine cost per steady-state period of the default scene, median of
     // 21 measurements of 2000 periods each.
-    let r = stickslip::run(&Scene::default()).expect("default scene runs");
-    let (signal, motor) = stickslip::build(&Scene::default()).expect("valid");
+    let r = stickslip::run(&Scene::default(), &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .expect("default scene runs");
+    let stickslip::scene::BuiltScene { signal, motor } = Scene::default().build().expect("valid");
     let mut costs: Vec<f64> = (0..21)
         .filter_map(|_| period_cost(&signal, &motor, r.steady.boundary_velocity))
         .collect();

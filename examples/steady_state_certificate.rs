@@ -175,7 +175,7 @@ fn regressions() {
     )
     .expect("a valid scene");
     let t = median_time(9, || {
-        stickslip::simulate(&stalled).expect("runs");
+        stickslip::run(&stalled, &stickslip::RunOptions::default()).expect("runs");
     });
     println!(
         "stuck orbit alternating between doubles, verified: {:.3} ms (median of 9)",
@@ -187,7 +187,7 @@ fn regressions() {
     };
     pair.motor.extra_acceleration = -46.573362;
     let t = median_time(9, || {
-        stickslip::simulate(&pair).expect("runs");
+        stickslip::run(&pair, &stickslip::RunOptions::default()).expect("runs");
     });
     println!(
         "pair of orbits next to a jump of the map: {:.3} ms (median of 9)",

@@ -13,11 +13,11 @@ use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::time::Instant;
 use stickslip::Indicator;
-use stickslip::PeriodEngine;
-use stickslip::PeriodStart;
 use stickslip::SignalSpec;
-use stickslip::{EventEngine, EventOptions};
-use stickslip::{Motor, Scene, Signal};
+use stickslip::engine::PeriodEngine;
+use stickslip::engine::PeriodStart;
+use stickslip::{Scene, motor::Motor, signal::Signal};
+use stickslip::{engine::EventEngine, engine::EventOptions};
 
 fn median(mut xs: Vec<f64>) -> f64 {
     xs.sort_by(f64::total_cmp);
@@ -50,7 +50,9 @@ fn timed(scene: &Scene, runs: usize) -> (f64, f64, f64, stickslip::RunReport) {
     let (mut setup, mut sim, mut wall) = (Vec::new(), Vec::new(), Vec::new());
     let mut last = None;
     for _ in 0..runs {
-        let r = stickslip::run(scene).expect("scene runs");
+        let r = stickslip::run(scene, &stickslip::RunOptions::default())
+            .and_then(stickslip::Outcome::into_report)
+            .expect("scene runs");
         setup.push(r.setup_time.as_secs_f64() * 1e6);
         sim.push(r.simulation_time.as_secs_f64() * 1e6);
         wall.push(r.wall_time.as_secs_f64() * 1e6);
@@ -103,7 +105,9 @@ fn main() {
     let mut events = 0;
     for _ in 0..runs {
         let clock = Instant::now();
-        let r = stickslip::run(&scene).expect("default scene runs");
+        let r = stickslip::run(&scene, &stickslip::RunOptions::default())
+            .and_then(stickslip::Outcome::into_report)
+            .expect("default scene runs");
         walls.push(clock.elapsed().as_secs_f64() * 1e6);
         internal.push(r.wall_time.as_secs_f64() * 1e6);
         events = r.work.events.total();

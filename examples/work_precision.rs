@@ -37,13 +37,13 @@
 
 use std::fmt::Write as _;
 use std::time::Instant;
-use stickslip::PeriodEngine;
 use stickslip::RunReport;
+use stickslip::engine::PeriodEngine;
 use stickslip::plot::Preset;
 use stickslip::plot::precision::{self, Method, PAPER_STEPS, Run, SCENES};
-use stickslip::{EventEngine, EventOptions};
-use stickslip::{FixedStepEngine, FixedStepOptions};
-use stickslip::{Motor, Scene, Signal};
+use stickslip::{Scene, motor::Motor, signal::Signal};
+use stickslip::{engine::EventEngine, engine::EventOptions};
+use stickslip::{engine::FixedStepEngine, engine::FixedStepOptions};
 
 /// Steps per period of the highest harmonic for the reference.
 const STEPS: [u32; 13] = [
@@ -69,7 +69,7 @@ fn run_once(
         scene: &Scene,
         motor: &Motor,
     ) -> Result<RunReport, stickslip::Error> {
-        stickslip::run_with(e, scene, motor)
+        stickslip::Outcome::of_engine(e, scene, motor).and_then(stickslip::Outcome::into_report)
     }
     let clock = Instant::now();
     let report = match engine {
@@ -122,7 +122,7 @@ fn main() {
     let mut summary = String::new();
     for (ci, case) in SCENES.iter().enumerate() {
         let scene = case.scene();
-        let (signal, motor) = stickslip::build(&scene).expect("valid scene");
+        let stickslip::scene::BuiltScene { signal, motor } = scene.build().expect("valid scene");
         let (exact, wall, runs) =
             measure(&signal, &motor, &scene, Method::Event(None)).expect("the event engine runs");
         let v_exact = exact.indicators.v_inf;

@@ -1,5 +1,5 @@
 //! Cross-check: one scene through the exact event engine and through the
-//! fixed-step reference ([`crate::engine::fixed_step`]) at several
+//! fixed-step reference (`crate::engine::fixed_step`) at several
 //! resolutions, indicator by indicator (`stickslip check SCENE --steps
 //! 50,500,5000,50000`).
 //!

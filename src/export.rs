@@ -1,9 +1,9 @@
 //! What a user needs to check our results elsewhere (the rod signal itself
-//! is described by [`crate::signal::description`]):
+//! is described by `crate::signal::description`):
 //!
 //! * the exact trajectory at given times and the per-period series of the
-//!   start-up, as CSV or JSON lines ([`trajectory_table`],
-//!   [`periods_table`]); [`exact_tables`] gives both as CSV text to
+//!   start-up, as CSV or JSON lines (`trajectory_table`,
+//!   `periods_table`); [`exact_tables`] gives both as CSV text to
 //!   callers of the library (the Python package).
 
 use crate::compare::exact::{ExactState, PeriodRecord, event_name};
@@ -243,7 +243,7 @@ fn exact_series(
         if !exact_scene.outputs.indicators.contains(&startup) {
             exact_scene.outputs.indicators.push(startup);
         }
-        crate::simulation::run(&exact_scene)
+        crate::simulation::steady(&exact_scene)
             .map_err(|e| e.to_string())?
             .startup_periods
             .unwrap_or(1)

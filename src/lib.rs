@@ -9,13 +9,13 @@
 //! ## Quick start
 //!
 //! ```
-//! use stickslip::{Indicator, Scene, simulate};
+//! use stickslip::{Indicator, RunOptions, Scene};
 //!
 //! // The paper's motor and signal: n = 2 harmonics, sqrt(kappa) = 6,
 //! // Lanczos sigma factors (docs/model.md section 7).
 //! let mut scene = Scene::default();
 //! scene.outputs.indicators = vec![Indicator::VInf, Indicator::Smoothness];
-//! let outcome = simulate(&scene)?;
+//! let outcome = stickslip::run(&scene, &RunOptions::default())?;
 //! let report = outcome.report().expect("this motor reaches a steady state");
 //! let v_inf = report.value(Indicator::VInf).unwrap();
 //! let error = report.error(Indicator::VInf).unwrap();
@@ -24,41 +24,57 @@
 //! ```
 //!
 //! A scene can also be read from TOML ([`Scene::from_toml_str`],
-//! [`Scene::from_path`]); [`simulate`] returns an [`Outcome`]: a periodic
+//! [`Scene::from_path`]); [`run`] returns an [`Outcome`]: a periodic
 //! steady state with its indicators ([`RunReport`]), a slider that runs
 //! away, or a start-up that did not settle. Each is a result, not an error.
+//! [`RunOptions`] hands [`run`] a signal built once ([`Scene::build`],
+//! [`simulation::SignalCache`]) or the event engine's tolerances;
+//! [`Outcome::of_engine`] runs the same analysis on an engine set up by
+//! the caller, and [`RunReport::sensitivities`] gives the exact
+//! derivatives of `v_inf` at the steady state.
+//!
+//! ## The front door
+//!
+//! The crate root names what a script runs against: [`Scene`] (with its
+//! [`SignalSpec`] and [`MotorParams`]), [`run`] and its [`RunOptions`],
+//! the [`Outcome`] and its [`RunReport`], the [`Indicator`]s, and
+//! [`Error`]. Everything else lives in a namespace, one per step of the
+//! data path below; every public type name is used once across them
+//! (`tests/architecture.rs` checks it).
 //!
 //! ## The data path
 //!
 //! Dependencies point one way, from the bottom of this list to the top
 //! (`tests/architecture.rs` checks it):
 //!
-//! 1. `numerics`: trigonometric polynomials and their certified roots,
-//!    brackets, compensated sums, line fits, contours of gridded values;
-//!    no physics; [`symbol`]: the one table of quantity symbols and
-//!    units that the indicators and every figure's labels share;
-//! 2. `signal` (the rod signal, docs/model.md section 2), `motor` (the
-//!    slider and its friction), `power` (the actuator's input power,
+//! 1. [`error`] (every error type), [`numerics`]: trigonometric
+//!    polynomials and their certified roots, brackets, compensated sums,
+//!    line fits, contours of gridded values; no physics; [`symbol`]: the
+//!    one table of quantity symbols and units that the indicators and
+//!    every figure's labels share;
+//! 2. [`signal`] (the rod signal, docs/model.md section 2), [`motor`] (the
+//!    slider and its friction), [`power`] (the actuator's input power,
 //!    section 6.3 of the paper);
-//! 3. `engine`: walks the slider through time and hands every exact segment,
-//!    event and period end to an [`Observer`]; `engine/<method>.rs` is one
-//!    engine ([`EventEngine`], the exact one; [`FixedStepEngine`], the
-//!    fixed-step reference), `engine/contact.rs` the stick/slip decision they
-//!    share;
-//! 4. `observer`: what a run records ([`EventLog`], [`Trajectory`]);
-//! 5. `analysis`: per-period statistics, the start-up, the fixed point of the
-//!    period map, the steady state and the error estimates;
-//!    [`sensitivity`]: exact derivatives of the steady state with respect to
-//!    the motor's and the signal's parameters;
-//! 6. `indicator`: the one table of indicators ([`Indicator`]);
-//! 7. `scene`: the validated description of a run ([`Scene`]);
-//! 8. `simulation`: runs a scene ([`simulate`]) with a time budget;
-//! 9. `report` (text and JSON), `check` (the fixed-step cross-check),
-//!    `export`, `compare` (a user's own results against the exact ones:
-//!    [`compare`] reads files, [`compare_data`] takes arrays),
-//!    [`sweep`], [`characteristic`] (velocity against load, stall force),
-//!    [`optimize`] (the best drive signal),
-//!    [`plot`] (`plot/<figure family>.rs`);
+//! 3. [`engine`]: walks the slider through time and hands every exact
+//!    segment, event and period end to an [`engine::Observer`];
+//!    `engine/<method>.rs` is one engine ([`engine::EventEngine`], the
+//!    exact one; [`engine::FixedStepEngine`], the fixed-step reference),
+//!    `engine/contact.rs` the stick/slip decision they share;
+//! 4. [`observer`]: what a run records ([`observer::EventLog`],
+//!    [`observer::Trajectory`]);
+//! 5. [`analysis`]: per-period statistics, the start-up, the fixed point of
+//!    the period map, the steady state and the error estimates;
+//!    [`sensitivity`]: exact derivatives of the steady state with respect
+//!    to the motor's and the signal's parameters;
+//! 6. [`indicator`]: the one table of indicators ([`Indicator`]);
+//! 7. [`scene`]: the validated description of a run ([`Scene`]);
+//!    [`provenance`]: the version and the scene's hash;
+//! 8. [`simulation`]: runs a scene ([`run`]) with a time budget;
+//! 9. [`report`] (text and JSON), [`check`] (the fixed-step cross-check),
+//!    [`export`], [`compare`] (a user's own results against the exact
+//!    ones), [`sweep`], [`characteristic`] (velocity against load, stall
+//!    force), [`optimize`] (the best drive signal), [`plot`]
+//!    (`plot/<figure family>.rs`);
 //! 10. [`cli`], the `stickslip` command.
 //!
 //! Only the names below are public; the rest of the tree is crate-private.
@@ -77,65 +93,37 @@
 
 pub mod analysis;
 pub mod characteristic;
-mod check;
+pub mod check;
 #[cfg(feature = "cli")]
 pub mod cli;
-mod compare;
+pub mod compare;
 mod csv_text;
-mod engine;
-mod error;
-mod export;
-mod indicator;
+pub mod engine;
+pub mod error;
+pub mod export;
+pub mod indicator;
 mod interrupt;
-mod motor;
+pub mod motor;
 pub mod numerics;
-mod observer;
+pub mod observer;
 pub mod optimize;
 mod output;
 #[cfg(feature = "plot")]
 pub mod plot;
 mod plural;
-mod power;
-mod provenance;
-mod report;
-mod scene;
+pub mod power;
+pub mod provenance;
+pub mod report;
+pub mod scene;
 pub mod sensitivity;
-mod signal;
-mod simulation;
+pub mod signal;
+pub mod simulation;
 pub mod sweep;
 pub mod symbol;
 
-pub use check::{CheckReport, check};
-#[cfg(feature = "files")]
-pub use compare::compare;
-pub use compare::{
-    Column as CompareColumn, CompareError, CompareOptions, Report as CompareReport,
-    UserData as CompareData, compare_data,
-};
-pub use engine::event::{EventEngine, EventOptions};
-pub use engine::fixed_step::{FixedStepEngine, FixedStepOptions};
-pub use engine::{
-    Direction, Event, EventCounts, EventKind, Kinematics, Mode, Observer, PeriodEnd, PeriodEngine,
-    PeriodStart, Segment, WorkCounters,
-};
-pub use error::{Error, Num, ParamError, SceneError, SimulationError, SweepError};
-pub use export::exact_tables;
+pub use error::Error;
 pub use indicator::{Indicator, UnknownIndicator};
-pub use motor::{Motor, MotorParams};
-pub use observer::{EventLog, MAX_LOGGED_EVENTS, Trajectory};
-pub use power::{ActuatorParams, PowerReport, input_power};
-pub use provenance::{VERSION, scene_hash};
-pub use report::{format_with_error, to_json, to_text};
-pub use scene::{
-    EngineKind, MAX_FIXED_STEPS_PER_PERIOD, MAX_INPUT_BYTES, Outputs, Override, OverrideError,
-    RunSettings, Scene, Warning, read_input,
-};
-pub use signal::description::SignalDescription;
-pub use signal::{
-    Drive, FourierSignal, Held, IdealShape, MAX_HARMONICS, RodState, Signal, SignalSpec,
-};
-pub use simulation::{
-    CertificateKind, ErrorEstimate, Outcome, Regime, RunReport, SignalCache,
-    SteadyStateCertificate, SteadyStateCheck, Unsettled, build, run, run_with, sensitivities,
-    simulate, simulate_with, simulate_with_signal,
-};
+pub use motor::MotorParams;
+pub use scene::Scene;
+pub use signal::SignalSpec;
+pub use simulation::{Outcome, RunOptions, RunReport, run};

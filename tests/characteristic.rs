@@ -14,7 +14,7 @@ use stickslip::Outcome;
 use stickslip::SignalSpec;
 use stickslip::characteristic::StallKind;
 use stickslip::characteristic::{self, Characteristic, LoadAxis, Mark, Options};
-use stickslip::{Motor, Scene, Signal};
+use stickslip::{Scene, motor::Motor, signal::Signal};
 
 /// The characteristic of the default scene with the default options,
 /// computed once for the tests that read it.
@@ -43,7 +43,9 @@ fn v_inf_at(scene: &Scene, force: f64) -> (f64, f64) {
     let mut s = scene.clone();
     s.motor.extra_acceleration = -force / s.motor.slider_mass;
     s.outputs.indicators = vec![Indicator::VInf];
-    let report = stickslip::run(&s).expect("a steady state");
+    let report = stickslip::run(&s, &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .expect("a steady state");
     (
         report.indicators.v_inf,
         report.error.v_inf.expect("an error estimate"),
@@ -656,7 +658,7 @@ fn the_scene_s_own_extra_acceleration_is_replaced_by_the_load() {
     assert_eq!(c.replaced_extra_acceleration, 500.0);
     assert_eq!(c.no_load.extra_acceleration, 0.0);
     assert!(matches!(
-        stickslip::simulate(&sc).unwrap(),
+        stickslip::run(&sc, &stickslip::RunOptions::default()).unwrap(),
         Outcome::RunAway { .. }
     ));
 }
@@ -737,7 +739,8 @@ fn a_drive_without_sliding_friction_has_a_complete_characteristic_in_bounded_run
     // that is neutral there.
     let mut at_rest = scene.clone();
     at_rest.outputs.indicators = vec![Indicator::VInf, Indicator::StartupTime];
-    let Outcome::Steady(r) = stickslip::simulate(&at_rest).unwrap() else {
+    let Outcome::Steady(r) = stickslip::run(&at_rest, &stickslip::RunOptions::default()).unwrap()
+    else {
         panic!("no steady state at zero load");
     };
     let startup = r.transient.as_ref().expect("the start-up was simulated");

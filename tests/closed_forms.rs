@@ -3,8 +3,8 @@
 mod common;
 
 use common::*;
-use stickslip::Signal;
 use stickslip::SignalSpec;
+use stickslip::signal::Signal;
 
 /// Ideal continuous signal, `kappa <= 1` (stick-slip). Closed form (docs/model.md
 /// section 7): `v_1 = x_Rmax / T`, `v_p = (x_Rmax/T)(1 + a_R/(a_R + a_d))`
@@ -86,7 +86,10 @@ fn frictionless_slider_never_moves() {
                 .all(|v| *v == 0.0)
         );
         // And a kappa-based scene without friction is refused, naming the field.
-        let err = stickslip::run(&scene).unwrap_err().to_string();
+        let err = stickslip::run(&scene, &stickslip::RunOptions::default())
+            .and_then(stickslip::Outcome::into_report)
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("signal.kappa"), "{err}");
     }
 }
@@ -181,9 +184,16 @@ fn mirrored_harmonics_scene() {
         scale_to_stroke: Some(25e-6),
         shift_to_minimum: true,
     };
-    let a = stickslip::run(&scene_with(make(0.0))).unwrap();
+    let a = stickslip::run(&scene_with(make(0.0)), &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .unwrap();
     // x -> -x is a phase shift of pi in every harmonic (sin(u + pi) = -sin u).
-    let b = stickslip::run(&scene_with(make(std::f64::consts::PI))).unwrap();
+    let b = stickslip::run(
+        &scene_with(make(std::f64::consts::PI)),
+        &stickslip::RunOptions::default(),
+    )
+    .and_then(stickslip::Outcome::into_report)
+    .unwrap();
     assert!(a.indicators.v_inf.abs() > 1e-3);
     assert_rel(
         b.indicators.v_inf,

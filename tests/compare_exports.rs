@@ -15,7 +15,10 @@
 mod common;
 
 use common::in_process as cli;
-use stickslip::{CompareColumn, CompareData, CompareOptions, Scene};
+use stickslip::{
+    Scene, compare::Column as CompareColumn, compare::CompareOptions,
+    compare::UserData as CompareData,
+};
 
 const DIR: &str = "tests/data/compare";
 const SCENE: &str = "examples/scenes/paper_default.toml";
@@ -204,8 +207,8 @@ fn the_analysis_takes_arrays_without_a_file() {
     let scene = Scene::from_path(std::path::Path::new(SCENE)).unwrap();
     let options = CompareOptions::default();
     let from_arrays =
-        stickslip::compare_data(&scene, &[("arrays".to_owned(), data)], &options).unwrap();
-    let from_file = stickslip::compare(&scene, &[path], &options).unwrap();
+        stickslip::compare::compare_data(&scene, &[("arrays".to_owned(), data)], &options).unwrap();
+    let from_file = stickslip::compare::compare(&scene, &[path], &options).unwrap();
     let (a, b) = (&from_arrays.files[0], &from_file.files[0]);
     assert_eq!(a.v_inf_split, b.v_inf_split);
     assert_eq!(a.errors, b.errors);
@@ -215,7 +218,7 @@ fn the_analysis_takes_arrays_without_a_file() {
         v_s: Some(CompareColumn::new("v_S", vec![0.0, 0.1, 0.2])),
         ..Default::default()
     };
-    let e = stickslip::compare_data(&scene, &[("arrays".to_owned(), bad)], &options)
+    let e = stickslip::compare::compare_data(&scene, &[("arrays".to_owned(), bad)], &options)
         .unwrap_err()
         .to_string();
     assert!(

@@ -7,7 +7,7 @@ mod common;
 
 use common::in_process as cli;
 use stickslip::plot::Preset;
-use stickslip::{CompareOptions, Scene};
+use stickslip::{Scene, compare::CompareOptions};
 
 const SCENE: &str = "examples/scenes/paper_default.toml";
 
@@ -24,7 +24,7 @@ fn the_figure_holds_every_drawn_point_in_its_data() {
         .map(|s| PathBuf::from(format!("tests/data/compare/fixed_{s}.csv")))
         .collect();
     let scene = Scene::from_path(Path::new(SCENE)).unwrap();
-    let report = stickslip::compare(&scene, &files, &CompareOptions::default()).unwrap();
+    let report = stickslip::compare::compare(&scene, &files, &CompareOptions::default()).unwrap();
     let figure = stickslip::plot::compare::figure(&report, None, "cmp").unwrap();
     let dir = scratch("data");
     let [svg, csv] = figure
@@ -102,7 +102,8 @@ fn files_are_told_apart_by_their_step_in_the_legend_and_named_in_the_caption() {
             .iter()
             .map(|n| PathBuf::from(format!("tests/data/compare/{n}")))
             .collect();
-        let report = stickslip::compare(&scene, &files, &CompareOptions::default()).unwrap();
+        let report =
+            stickslip::compare::compare(&scene, &files, &CompareOptions::default()).unwrap();
         let figure = stickslip::plot::compare::figure(&report, None, "cmp").unwrap();
         let legend: Vec<String> = figure
             .plot

@@ -10,7 +10,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use stickslip::{Drive, Motor, Outcome, Scene, SignalSpec};
+use stickslip::{Outcome, Scene, SignalSpec, motor::Motor, signal::Drive};
 
 /// The paper's signal at a frequency: 9448.8 Hz is its `f_0` at
 /// `kappa = 36` to five digits.
@@ -22,7 +22,7 @@ fn scene(text: &str) -> Scene {
 }
 
 fn steady(scene: &Scene) -> stickslip::RunReport {
-    match stickslip::simulate(scene).unwrap() {
+    match stickslip::run(scene, &stickslip::RunOptions::default()).unwrap() {
         Outcome::Steady(r) => *r,
         other => panic!("no steady state: {}", other.regime()),
     }
@@ -58,20 +58,20 @@ fn a_frequency_gives_the_signal_of_the_kappa_it_corresponds_to() {
         ));
         let motor = Motor::new(by_kappa.motor).unwrap();
         let f0 = duty / (2.0 * 25e-6 / (36.0 * motor.a_0())).sqrt();
-        let built = stickslip::build(&by_kappa).unwrap();
-        assert!((built.0.f0() / f0 - 1.0).abs() < 1e-15, "{kind}");
+        let built = by_kappa.build().unwrap();
+        assert!((built.signal.f0() / f0 - 1.0).abs() < 1e-15, "{kind}");
         let by_frequency = scene(&format!(
             "[signal]\nkind = \"{kind}\"\nstroke = 25e-6\nfrequency = {f0:?}\nduty = {duty}\n{extra}"
         ));
         let shape = by_frequency.signal.shape().unwrap();
         assert!((shape.kappa(&motor) / 36.0 - 1.0).abs() < 1e-14, "{kind}");
-        let other = stickslip::build(&by_frequency).unwrap();
-        assert!((other.0.period() / built.0.period() - 1.0).abs() < 1e-15);
+        let other = by_frequency.build().unwrap();
+        assert!((other.signal.period() / built.signal.period() - 1.0).abs() < 1e-15);
         // The same rod motion, to rounding.
-        let t = built.0.period();
+        let t = built.signal.period();
         for i in 0..64 {
             let tau = t * i as f64 / 64.0;
-            let (a, b) = (built.0.position(tau), other.0.position(tau));
+            let (a, b) = (built.signal.position(tau), other.signal.position(tau));
             assert!(
                 (a - b).abs() <= 1e-12 * 25e-6,
                 "{kind} at {tau}: {a} vs {b}"
@@ -85,7 +85,7 @@ fn f_max_is_n_times_the_frequency() {
     let s = scene(&BY_FREQUENCY.replace("frequency = 9448.8", "f_max = 18897.6"));
     let motor = Motor::new(s.motor).unwrap();
     assert_eq!(s.signal.f0(&motor), 18897.6 / 2.0);
-    let (signal, _) = stickslip::build(&s).unwrap();
+    let stickslip::scene::BuiltScene { signal, motor: _ } = s.build().unwrap();
     assert!((signal.f_max().unwrap() / 18897.6 - 1.0).abs() < 1e-15);
 }
 
@@ -217,8 +217,8 @@ fn v_inf_at(scene: &Scene, m: f64) -> (f64, f64) {
 fn at_fixed_frequency_the_slider_mass_derivative_is_the_central_difference() {
     let s = scene(BY_FREQUENCY);
     let report = steady(&s);
-    let sens = stickslip::sensitivities(&s, &report).unwrap();
-    assert_eq!(sens.held_fixed, stickslip::Held::Frequency);
+    let sens = report.sensitivities(&s).unwrap();
+    assert_eq!(sens.held_fixed, stickslip::signal::Held::Frequency);
     assert_eq!(sens.f0, 9448.8);
     let entry = |name: &str| {
         sens.entries
@@ -331,7 +331,7 @@ fn a_drive_by_frequency_needs_no_static_friction() {
         "[motor]\nslider_mass = 1.4e-3\ncontact_force = 1\nmu_static = 0\nmu_dynamic = 0\n{BY_FREQUENCY}"
     ));
     let motor = Motor::new(s.motor).unwrap();
-    let (signal, _) = stickslip::build(&s).unwrap();
+    let stickslip::scene::BuiltScene { signal, motor: _ } = s.build().unwrap();
     assert!((signal.f0() / 9448.8 - 1.0).abs() < 1e-15);
     assert!(
         matches!(s.signal, SignalSpec::Fourier { shape, .. } if shape.drive == Drive::Frequency(9448.8))

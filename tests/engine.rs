@@ -4,11 +4,13 @@
 mod common;
 
 use common::*;
-use stickslip::EventLog;
-use stickslip::{Direction, EventKind, Mode, PeriodEngine, PeriodStart};
-use stickslip::{EventEngine, EventOptions};
-use stickslip::{FourierSignal, SignalSpec};
-use stickslip::{Motor, MotorParams, Signal};
+use stickslip::observer::EventLog;
+use stickslip::{MotorParams, motor::Motor, signal::Signal};
+use stickslip::{SignalSpec, signal::FourierSignal};
+use stickslip::{
+    engine::Direction, engine::EventKind, engine::Mode, engine::PeriodEngine, engine::PeriodStart,
+};
+use stickslip::{engine::EventEngine, engine::EventOptions};
 
 /// A single harmonic `x_R = (s/2)(1 - cos w t)`: `v_R = V sin w t` with
 /// `V = s w / 2`, smallest at `t = 3T/4` where `a_R = 0`.
@@ -244,7 +246,7 @@ fn harmonics_spec_reproduces_a_fourier_signal() {
 /// stiction fraction is 0.25, section7_grid.csv).
 #[test]
 fn steady_state_regimes() {
-    use stickslip::Regime;
+    use stickslip::simulation::Regime;
     let cases = [
         (fourier(25e-6, 1e-4, 5, true), Regime::Stuck),
         (fourier(25e-6, 36.0, 2, true), Regime::SlipSlip),

@@ -6,16 +6,18 @@ mod common;
 
 use common::*;
 use stickslip::RunReport;
-use stickslip::{EventEngine, EventOptions};
-use stickslip::{Motor, Scene};
+use stickslip::{Scene, motor::Motor};
+use stickslip::{engine::EventEngine, engine::EventOptions};
 
 fn run_with_tolerance(scene: &Scene, time_tolerance: f64) -> RunReport {
-    let (signal, motor) = stickslip::build(scene).unwrap();
+    let stickslip::scene::BuiltScene { signal, motor } = scene.build().unwrap();
     let options = EventOptions {
         time_tolerance,
         ..EventOptions::default()
     };
-    stickslip::run_with(EventEngine::new(&signal, &motor, options), scene, &motor).unwrap()
+    stickslip::Outcome::of_engine(EventEngine::new(&signal, &motor, options), scene, &motor)
+        .and_then(stickslip::Outcome::into_report)
+        .unwrap()
 }
 
 /// Closed forms of docs/model.md section 7 (and the discrete step of

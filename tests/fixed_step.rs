@@ -10,13 +10,15 @@
 mod common;
 
 use common::ideal;
-use stickslip::EngineKind;
 use stickslip::SignalSpec;
-use stickslip::{Event, EventKind, Mode, PeriodEngine, PeriodStart};
-use stickslip::{EventEngine, EventOptions};
-use stickslip::{EventLog, Trajectory};
-use stickslip::{FixedStepEngine, FixedStepOptions};
-use stickslip::{Motor, Scene, Signal};
+use stickslip::scene::EngineKind;
+use stickslip::{Scene, motor::Motor, signal::Signal};
+use stickslip::{
+    engine::Event, engine::EventKind, engine::Mode, engine::PeriodEngine, engine::PeriodStart,
+};
+use stickslip::{engine::EventEngine, engine::EventOptions};
+use stickslip::{engine::FixedStepEngine, engine::FixedStepOptions};
+use stickslip::{observer::EventLog, observer::Trajectory};
 
 fn fourier(kappa: f64, n: usize) -> SignalSpec {
     common::fourier(25e-6, kappa, n, true)
@@ -49,7 +51,8 @@ impl Convergence {
         let motor = Motor::new(scene.motor).expect("valid motor");
         let signal = Signal::build(&scene.signal, &motor).expect("valid signal");
         let engine = EventEngine::new(&signal, &motor, EventOptions::default());
-        let exact = stickslip::run_with(engine, &scene, &motor)
+        let exact = stickslip::Outcome::of_engine(engine, &scene, &motor)
+            .and_then(stickslip::Outcome::into_report)
             .expect("event engine runs")
             .indicators
             .v_inf;
@@ -64,7 +67,9 @@ impl Convergence {
     /// `|v_inf - v_inf(event)|` at `steps` steps per harmonic period.
     fn error(&self, steps: u32) -> f64 {
         let engine = reference(&self.signal, &self.motor, steps);
-        let r = stickslip::run_with(engine, &self.scene, &self.motor).expect("reference runs");
+        let r = stickslip::Outcome::of_engine(engine, &self.scene, &self.motor)
+            .and_then(stickslip::Outcome::into_report)
+            .expect("reference runs");
         (r.indicators.v_inf - self.exact).abs()
     }
 
@@ -417,10 +422,14 @@ fn a_jump_inside_a_step_is_reported_at_its_exact_phase() {
 fn scene_with_fixed_engine_runs_the_reference() {
     for spec in [fourier(0.36, 5), fourier(4.0, 2)] {
         let mut s = scene(spec);
-        let exact = stickslip::run(&s).expect("event engine runs");
+        let exact = stickslip::run(&s, &stickslip::RunOptions::default())
+            .and_then(stickslip::Outcome::into_report)
+            .expect("event engine runs");
         s.run.engine = EngineKind::Fixed;
         s.run.steps_per_harmonic = 200;
-        let r = stickslip::run(&s).expect("reference runs");
+        let r = stickslip::run(&s, &stickslip::RunOptions::default())
+            .and_then(stickslip::Outcome::into_report)
+            .expect("reference runs");
         let n = match &r.f_max {
             Some(f) => (f * r.period).round() as u64,
             None => 1,
@@ -441,7 +450,7 @@ fn scene_with_fixed_engine_runs_the_reference() {
 #[test]
 fn check_tabulates_every_indicator_at_every_resolution() {
     let s = scene(fourier(0.36, 5));
-    let report = stickslip::check(&s, &[400, 100, 200, 100]).expect("check runs");
+    let report = stickslip::check::check(&s, &[400, 100, 200, 100]).expect("check runs");
     let steps: Vec<Option<u32>> = report
         .reference
         .iter()
@@ -468,9 +477,9 @@ fn check_tabulates_every_indicator_at_every_resolution() {
     }
     let text = report.to_text();
     assert!(text.contains("v_inf (m/s)") && text.contains("fixed 400"));
-    assert!(stickslip::check(&s, &[]).is_err());
-    assert!(stickslip::check(&s, &[50, 0]).is_err());
-    assert!(stickslip::check(&s, &[0]).is_err());
+    assert!(stickslip::check::check(&s, &[]).is_err());
+    assert!(stickslip::check::check(&s, &[50, 0]).is_err());
+    assert!(stickslip::check::check(&s, &[0]).is_err());
 }
 
 /// `stickslip check`: bad `--steps` input is a clear error with a non-zero

@@ -14,7 +14,9 @@ mod common;
 use common::{ok, s, scratch, stickslip, write};
 use std::fs;
 use std::path::{Path, PathBuf};
-use stickslip::{Indicator, Outcome, RunReport, Scene, check, simulate, to_json, to_text};
+use stickslip::{
+    Indicator, Outcome, RunReport, Scene, check::check, report::to_json, report::to_text,
+};
 
 fn scene_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/harmonics.toml")
@@ -25,7 +27,8 @@ fn scene() -> Scene {
 }
 
 fn report(scene: &Scene) -> (Outcome, RunReport) {
-    let outcome = simulate(scene).expect("the example scene runs");
+    let outcome =
+        stickslip::run(scene, &stickslip::RunOptions::default()).expect("the example scene runs");
     let report = outcome.report().expect("a steady state").clone();
     (outcome, report)
 }

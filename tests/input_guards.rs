@@ -5,10 +5,13 @@
 
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
-use stickslip::MAX_LOGGED_EVENTS;
 use stickslip::SignalSpec;
-use stickslip::{EngineKind, MAX_FIXED_STEPS_PER_PERIOD, MAX_INPUT_BYTES, Scene, read_input};
-use stickslip::{Error, Num, ParamError, SceneError, SimulationError};
+use stickslip::observer::MAX_LOGGED_EVENTS;
+use stickslip::{Error, error::Num, error::ParamError, error::SceneError, error::SimulationError};
+use stickslip::{
+    Scene, scene::EngineKind, scene::MAX_FIXED_STEPS_PER_PERIOD, scene::MAX_INPUT_BYTES,
+    scene::read_input,
+};
 
 fn parse(text: &str) -> Result<Scene, SceneError> {
     Scene::from_toml_str(text, "<string>")
@@ -140,7 +143,8 @@ fn time_limit_stops_the_slow_scene_and_names_the_period() {
     let mut scene = parse(SLOW_SCENE).unwrap();
     scene.run.time_limit_s = Some(0.5);
     let clock = Instant::now();
-    let result = stickslip::run(&scene);
+    let result = stickslip::run(&scene, &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report);
     let elapsed = clock.elapsed();
     match result {
         Err(Error::Simulation(SimulationError::TimeLimit { seconds, period })) => {
@@ -194,7 +198,9 @@ events = true
 "#,
     )
     .unwrap();
-    let report = stickslip::run(&scene).unwrap();
+    let report = stickslip::run(&scene, &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .unwrap();
     let log = report.event_log.as_ref().unwrap();
     assert_eq!(log.len(), MAX_LOGGED_EVENTS);
     let total = report.events().total();
@@ -202,7 +208,9 @@ events = true
     assert_eq!(log.len() as u64 + report.event_log_omitted, total);
     // A short log is complete.
     scene.run.max_periods = 100;
-    let report = stickslip::run(&scene).unwrap();
+    let report = stickslip::run(&scene, &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .unwrap();
     assert_eq!(report.event_log_omitted, 0);
     assert_eq!(
         report.event_log.as_ref().unwrap().len() as u64,
@@ -254,7 +262,7 @@ fn messages_numbers_print_in_scientific_notation() {
     // T = sqrt(2 x_Rmax / a_R) overflows. The message once printed a_R
     // with 318 zeros.
     let scene = parse("[signal]\nkind = \"ideal\"\nstroke = 25e-6\nkappa = 1e-320\n").unwrap();
-    let e = stickslip::build(&scene).unwrap_err().to_string();
+    let e = scene.build().unwrap_err().to_string();
     assert!(e.contains("e-318 m/s^2 gives the period T = inf s"), "{e}");
     assert!(!e.contains("00000000"), "{e}");
 }

@@ -14,8 +14,8 @@ use proptest::prelude::*;
 use stickslip::Indicator;
 use stickslip::Outcome;
 use stickslip::SignalSpec;
-use stickslip::SimulationError;
-use stickslip::{Motor, MotorParams, Scene, Signal};
+use stickslip::error::SimulationError;
+use stickslip::{MotorParams, Scene, motor::Motor, signal::Signal};
 
 fn reproducer(name: &str) -> Scene {
     let path = format!(
@@ -44,7 +44,7 @@ fn neutral_map_gives_the_motion_from_rest() {
     for name in ["neutral_map_extreme.toml", "neutral_map_moderate.toml"] {
         let scene = reproducer(name);
         let limit = reachable(&scene, scene.run.max_periods);
-        match stickslip::simulate(&scene).unwrap() {
+        match stickslip::run(&scene, &stickslip::RunOptions::default()).unwrap() {
             Outcome::Steady(r) => {
                 // The motion from rest, within its error estimate.
                 let e = r.error.v_inf.expect("an estimate");
@@ -76,7 +76,7 @@ fn neutral_map_gives_the_motion_from_rest() {
 fn barely_begun_start_up_is_not_converged() {
     let scene = reproducer("tiny_friction_fast_rod.toml");
     let limit = reachable(&scene, scene.run.max_periods);
-    let outcome = stickslip::simulate(&scene).unwrap();
+    let outcome = stickslip::run(&scene, &stickslip::RunOptions::default()).unwrap();
     assert_eq!(outcome.regime(), "not_converged");
     let u = outcome.unsettled().unwrap();
     assert_eq!(u.periods_simulated, 110_008);
@@ -87,10 +87,12 @@ fn barely_begun_start_up_is_not_converged() {
     assert!(lo == Some(last) || hi == Some(last), "{:?}", u.v_inf_bounds);
     assert!(matches!(
         outcome.into_report(),
-        Err(SimulationError::NotConverged {
-            periods: 110_008,
-            ..
-        })
+        Err(stickslip::Error::Simulation(
+            SimulationError::NotConverged {
+                periods: 110_008,
+                ..
+            }
+        ))
     ));
 }
 
@@ -123,7 +125,9 @@ fn the_fixed_point_used_is_the_one_the_motion_from_rest_reaches() {
     only_v.outputs.indicators = vec![Indicator::VInf, Indicator::StartupTime];
     for verify in [false, true] {
         only_v.run.verify_steady_state = verify;
-        let r = stickslip::run_with(engine(), &only_v, &motor).unwrap();
+        let r = stickslip::Outcome::of_engine(engine(), &only_v, &motor)
+            .and_then(stickslip::Outcome::into_report)
+            .unwrap();
         // v_p = boundary velocity in this map: v_inf = a.
         assert!(
             (r.indicators.v_inf / a - 1.0).abs() < 1e-9,
@@ -194,7 +198,7 @@ proptest! {
     /// not converged); never a silent disagreement.
     #[test]
     fn fixed_point_and_start_up_agree_or_the_run_says_why(scene in scene()) {
-        match stickslip::simulate(&scene).unwrap() {
+        match stickslip::run(&scene, &stickslip::RunOptions::default()).unwrap() {
             Outcome::Steady(r) => {
                 let check = r.steady_state_check.expect("asked for");
                 prop_assert_ne!(check.agrees(), Some(false),

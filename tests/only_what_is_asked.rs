@@ -13,8 +13,8 @@ use common::mock::ThreeFixedPoints;
 use std::sync::Arc;
 use stickslip::Indicator;
 use stickslip::SignalSpec;
-use stickslip::{CertificateKind, Outcome, RunReport, SignalCache};
-use stickslip::{Motor, Scene, Signal};
+use stickslip::{Outcome, RunReport, simulation::CertificateKind, simulation::SignalCache};
+use stickslip::{Scene, motor::Motor, signal::Signal};
 
 fn only_v_inf(scene: &Scene) -> Scene {
     let mut s = scene.clone();
@@ -23,7 +23,9 @@ fn only_v_inf(scene: &Scene) -> Scene {
 }
 
 fn steady(scene: &Scene) -> RunReport {
-    stickslip::run(scene).expect("a steady state")
+    stickslip::run(scene, &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .expect("a steady state")
 }
 
 /// The default scene (the paper's section 7) and scenes of other signals
@@ -119,7 +121,9 @@ fn v_inf_only_run_of_a_three_fixed_point_map_takes_the_nearest() {
         periods: 0,
         close: false,
     };
-    let r = stickslip::run_with(engine, &scene, &motor).unwrap();
+    let r = stickslip::Outcome::of_engine(engine, &scene, &motor)
+        .and_then(stickslip::Outcome::into_report)
+        .unwrap();
     assert!(
         (r.indicators.v_inf / a - 1.0).abs() < 1e-9,
         "{}",
@@ -158,7 +162,9 @@ fn a_pair_of_fixed_points_close_to_the_found_one_is_seen() {
             periods: 0,
             close: true,
         };
-        let r = stickslip::run_with(engine, &scene, &motor).unwrap();
+        let r = stickslip::Outcome::of_engine(engine, &scene, &motor)
+            .and_then(stickslip::Outcome::into_report)
+            .unwrap();
         assert!(
             (r.indicators.v_inf / a - 1.0).abs() < 1e-9,
             "{indicators:?}: {}",
@@ -191,14 +197,16 @@ fn signal_cache_shares_the_signal_between_motors() {
     assert!(Arc::ptr_eq(&first, &cache.get(&other_mu_d).unwrap()));
     assert!(!Arc::ptr_eq(&first, &cache.get(&other_a0).unwrap()));
     for scene in [&base, &other_mu_d, &other_a0] {
-        let cached = cache.run(scene).unwrap();
         let own = steady(scene);
-        assert_eq!(
-            cached.indicators.v_inf.to_bits(),
-            own.indicators.v_inf.to_bits()
-        );
         let signal = cache.get(scene).unwrap();
-        let with = stickslip::simulate_with_signal(scene, &signal).unwrap();
+        let with = stickslip::run(
+            scene,
+            &stickslip::RunOptions {
+                signal: Some(&signal),
+                ..Default::default()
+            },
+        )
+        .unwrap();
         let Outcome::Steady(with) = with else {
             panic!("a steady state")
         };

@@ -12,8 +12,8 @@ use std::path::{Path, PathBuf};
 use std::process::Output;
 use stickslip::optimize::{Objective, OptimizeTable, Overrides, Settings, Shape};
 use stickslip::optimize::{Param, gradient, gradient_by_differences};
-use stickslip::{Motor, Scene};
-use stickslip::{Signal, SignalSpec};
+use stickslip::{Scene, motor::Motor};
+use stickslip::{SignalSpec, signal::Signal};
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()

@@ -139,7 +139,7 @@ fn json_is_traceable() {
     let scene_toml = toml::to_string(&v["scene"]).unwrap();
     let again = stickslip::Scene::from_toml_str(&scene_toml, "<json>").unwrap();
     assert_eq!(
-        stickslip::scene_hash(&again),
+        stickslip::provenance::scene_hash(&again),
         v["scene_hash"].as_str().unwrap()
     );
     let kinds = [

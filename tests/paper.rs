@@ -4,8 +4,8 @@
 mod common;
 
 use common::*;
-use stickslip::{Drive, FourierSignal, IdealShape};
-use stickslip::{Scene, Signal};
+use stickslip::{Scene, signal::Signal};
+use stickslip::{signal::Drive, signal::FourierSignal, signal::IdealShape};
 
 /// Section 7: `n = 2`, `sqrt(kappa) = 6`, sigma factors: `v_inf = 0.297 m/s`,
 /// 495 % of the ideal stick-slip maximum of 0.06 m/s.

@@ -13,7 +13,7 @@ use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
 use std::f64::consts::TAU;
 use stickslip::numerics::CompensatedSum;
-use stickslip::{FourierSignal, Motor, MotorParams, Signal, SignalSpec};
+use stickslip::{MotorParams, SignalSpec, motor::Motor, signal::FourierSignal, signal::Signal};
 
 /// Harmonics signal of random amplitudes `u_k k^(-decay)` and phases.
 fn random_series(rng: &mut StdRng, n: usize, decay: f64) -> Signal {

@@ -5,7 +5,7 @@
 mod grid;
 
 use grid::grid;
-use stickslip::Motor;
+use stickslip::motor::Motor;
 use stickslip::plot::performance::{GridPoint, figures6_7};
 use stickslip::plot::{Figure, PlotError, Preset, scaling, signals};
 
@@ -96,7 +96,7 @@ fn figure8_uses_the_scene_it_is_given() {
     let a = stickslip::plot::motion::figure8(&two).unwrap();
     let b = stickslip::plot::motion::figure8(&three).unwrap();
     assert_ne!(a.csv, b.csv);
-    let period = |scene: &stickslip::Scene| stickslip::build(scene).unwrap().0.period();
+    let period = |scene: &stickslip::Scene| scene.build().unwrap().signal.period();
     assert!(a.csv.contains(&format!("T = {:e} s", period(&two))));
     assert!(b.csv.contains(&format!("T = {:e} s", period(&three))));
 }

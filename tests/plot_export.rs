@@ -6,7 +6,7 @@
 //! raster of touching rectangles renders without a seam.
 
 use lopdf::{Document, Object};
-use stickslip::Motor;
+use stickslip::motor::Motor;
 use stickslip::plot::{Format, PRODUCER, Preset, scaling, signals, timeline};
 
 const PT_PER_MM: f64 = 72.0 / 25.4;

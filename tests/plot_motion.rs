@@ -237,7 +237,9 @@ fn v_inf_is_drawn_over_the_steady_slider_velocity() {
     assert!(v_inf > slider);
     assert_ne!(steady[v_inf].look.color, steady[slider].look.color);
     // At the steady state's v_inf (the run's report).
-    let report = stickslip::run(&Scene::default()).unwrap();
+    let report = stickslip::run(&Scene::default(), &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .unwrap();
     assert_eq!(steady[v_inf].pieces[0][0].1, report.indicators.v_inf);
 }
 
@@ -248,7 +250,9 @@ fn v_inf_is_drawn_over_the_steady_slider_velocity() {
 #[test]
 fn the_startup_runs_past_p_0_99_and_keeps_approaching_v_inf() {
     let scene = Scene::default();
-    let report = stickslip::run(&scene).unwrap();
+    let report = stickslip::run(&scene, &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .unwrap();
     let p99 = report.startup_periods.expect("a start-up");
     let v_inf = report.indicators.v_inf;
     let f = motion::startup(&scene, "s").unwrap();

@@ -9,8 +9,8 @@
 mod grid;
 
 use grid::grid;
-use stickslip::Motor;
 use stickslip::SignalSpec;
+use stickslip::motor::Motor;
 use stickslip::plot::motion::{self, Row, Span};
 use stickslip::plot::performance::figures6_7;
 use stickslip::plot::sweep::{SweepSpec, sweep_figure};

@@ -14,9 +14,12 @@ mod common;
 
 use approx::assert_relative_eq;
 use std::f64::consts::PI;
-use stickslip::Motor;
-use stickslip::{ActuatorParams, input_power};
-use stickslip::{Drive, FourierSignal, IdealShape, MotorParams, Signal, SignalSpec};
+use stickslip::motor::Motor;
+use stickslip::{
+    MotorParams, SignalSpec, signal::Drive, signal::FourierSignal, signal::IdealShape,
+    signal::Signal,
+};
+use stickslip::{power::ActuatorParams, power::input_power};
 
 /// (29) and (30) exactly as printed, for velocity amplitude `v_hat` at
 /// angular frequency `w`.

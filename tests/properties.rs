@@ -7,9 +7,9 @@
 use proptest::prelude::*;
 use stickslip::Indicator;
 use stickslip::RunReport;
-use stickslip::{Drive, IdealShape, SignalSpec};
-use stickslip::{Error, Motor, MotorParams, Scene, Signal, SimulationError};
-use stickslip::{EventEngine, EventOptions};
+use stickslip::{Error, MotorParams, Scene, error::SimulationError, motor::Motor, signal::Signal};
+use stickslip::{SignalSpec, signal::Drive, signal::IdealShape};
+use stickslip::{engine::EventEngine, engine::EventOptions};
 
 fn signal_spec() -> impl Strategy<Value = SignalSpec> {
     let shape = (-9.0f64..-3.0, -2.0f64..2.0, 0.2f64..1.0, any::<bool>()).prop_map(
@@ -79,11 +79,12 @@ fn scene() -> impl Strategy<Value = Scene> {
 
 fn run(scene: &Scene, signal: &Signal) -> Result<RunReport, Error> {
     let motor = Motor::new(scene.motor).unwrap();
-    stickslip::run_with(
+    stickslip::Outcome::of_engine(
         EventEngine::new(signal, &motor, EventOptions::default()),
         scene,
         &motor,
     )
+    .and_then(stickslip::Outcome::into_report)
 }
 
 proptest! {

@@ -4,9 +4,9 @@ mod common;
 
 use common::*;
 use stickslip::Indicator;
-use stickslip::Regime;
 use stickslip::SignalSpec;
-use stickslip::{Error, Motor, MotorParams, Scene, SimulationError};
+use stickslip::simulation::Regime;
+use stickslip::{Error, MotorParams, Scene, error::SimulationError, motor::Motor};
 
 fn scene_from(text: &str) -> Scene {
     Scene::from_toml_str(text, "<test>").unwrap()
@@ -30,7 +30,7 @@ fn regime_counts_stick_entered_through_a_jump() {
     let r = stickslip::run(&scene_from(
         "[motor]\nslider_mass = 1.0\ncontact_force = 1.0\nmu_static = 1.0\nmu_dynamic = 0.5\n\
          extra_acceleration = -0.5\n[signal]\nkind = \"ideal\"\nstroke = 0.01\nkappa = 2.0\nduty = 0.5\n",
-    ))
+    ), &stickslip::RunOptions::default()).and_then(stickslip::Outcome::into_report)
     .unwrap();
     assert!(r.indicators.stiction_fraction > 0.0);
     assert_eq!(r.regime(), Regime::StickSlip);
@@ -72,8 +72,12 @@ fn friction_energy_estimate_covers_a_time_shift() {
              stroke = 25e-6\nshift_to_minimum = {shift}\n"
         )
     };
-    let a = stickslip::run(&scene_from(&text(true))).unwrap();
-    let b = stickslip::run(&scene_from(&text(false))).unwrap();
+    let a = stickslip::run(&scene_from(&text(true)), &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .unwrap();
+    let b = stickslip::run(&scene_from(&text(false)), &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .unwrap();
     let d = (a.indicators.friction_energy - b.indicators.friction_energy).abs();
     let bound = a.error.friction_energy.unwrap() + b.error.friction_energy.unwrap();
     assert!(d <= bound, "{d:e} > {bound:e}");
@@ -87,7 +91,9 @@ fn friction_energy_estimate_covers_a_time_shift() {
 fn run_away_is_detected_with_rod_jumps() {
     let mut scene = scene_with(ideal(4.0, 1.0));
     scene.motor.extra_acceleration = 124.0;
-    match stickslip::run(&scene) {
+    match stickslip::run(&scene, &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+    {
         Err(Error::Simulation(SimulationError::NoSteadyState { periods, .. })) => {
             assert!(periods < 10_000, "detected after {periods} periods")
         }
@@ -106,7 +112,10 @@ fn unrepresentable_signals_are_refused_and_tiny_friction_works() {
         scale_to_stroke: None,
         shift_to_minimum: true,
     };
-    let err = stickslip::run(&scene_with(spec)).unwrap_err().to_string();
+    let err = stickslip::run(&scene_with(spec), &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("signal"), "{err}");
 
     let mut scene = scene_with(fourier(25e-6, 1.0, 2, true));
@@ -115,7 +124,9 @@ fn unrepresentable_signals_are_refused_and_tiny_friction_works() {
         mu_dynamic: 1e-300,
         ..MotorParams::default()
     };
-    match stickslip::run(&scene) {
+    match stickslip::run(&scene, &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+    {
         Ok(r) => assert!(r.indicators.v_inf.is_finite()),
         Err(e) => assert!(e.to_string().contains("signal"), "{e}"),
     }

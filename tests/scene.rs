@@ -5,12 +5,12 @@
 
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
-use stickslip::ActuatorParams;
 use stickslip::Indicator;
 use stickslip::MotorParams;
-use stickslip::{Drive, IdealShape, SignalSpec};
-use stickslip::{EngineKind, Outputs, RunSettings, Scene};
-use stickslip::{ParamError, SceneError};
+use stickslip::power::ActuatorParams;
+use stickslip::{Scene, scene::EngineKind, scene::Outputs, scene::RunSettings};
+use stickslip::{SignalSpec, signal::Drive, signal::IdealShape};
+use stickslip::{error::ParamError, error::SceneError};
 
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes")

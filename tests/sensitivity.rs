@@ -19,8 +19,8 @@ use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use stickslip::Indicator;
 use stickslip::Outcome;
 use stickslip::sensitivity::{self, ChangeKind, Derivative, Parameter};
-use stickslip::{Drive, IdealShape, SignalSpec};
-use stickslip::{Motor, MotorParams, Scene};
+use stickslip::{MotorParams, Scene, motor::Motor};
+use stickslip::{SignalSpec, signal::Drive, signal::IdealShape};
 
 /// The scene with `parameter` set to `value`.
 fn with(scene: &Scene, parameter: Parameter, value: f64) -> Scene {
@@ -36,7 +36,7 @@ fn with(scene: &Scene, parameter: Parameter, value: f64) -> Scene {
 /// structure of its steady period (as a cyclic sequence: an event that
 /// moves across phase 0 changes nothing), if it has a steady state.
 fn steady(scene: &Scene) -> Option<(f64, f64, Vec<String>)> {
-    let Ok(Outcome::Steady(r)) = stickslip::simulate(scene) else {
+    let Ok(Outcome::Steady(r)) = stickslip::run(scene, &stickslip::RunOptions::default()) else {
         return None;
     };
     let s =
@@ -134,10 +134,11 @@ fn random_scenes_match_central_differences() {
     let mut regimes = std::collections::BTreeMap::new();
     while scenes < 250 {
         let scene = strategy.new_tree(&mut runner).unwrap().current();
-        let Ok(Outcome::Steady(report)) = stickslip::simulate(&scene) else {
+        let Ok(Outcome::Steady(report)) = stickslip::run(&scene, &stickslip::RunOptions::default())
+        else {
             continue;
         };
-        let Ok(sens) = stickslip::sensitivities(&scene, &report) else {
+        let Ok(sens) = report.sensitivities(&scene) else {
             continue;
         };
         scenes += 1;
@@ -229,13 +230,15 @@ fn ideal_continuous_signal_under_load_matches_the_closed_forms() {
             let expected = ideal_load(a_r, period, a_0, a_d, g_t).expect("a regime");
             seen.insert(format!("{:?}", expected.regime));
             let scene = ideal_scene(kappa, g_t);
-            let report = stickslip::run(&scene).unwrap();
+            let report = stickslip::run(&scene, &stickslip::RunOptions::default())
+                .and_then(stickslip::Outcome::into_report)
+                .unwrap();
             let what = format!("kappa {kappa}, g_t {g_t}: {:?}", expected.regime);
             assert!(
                 rel(report.indicators.v_inf, expected.v_inf) <= 1e-12,
                 "{what}"
             );
-            let sens = stickslip::sensitivities(&scene, &report).unwrap();
+            let sens = report.sensitivities(&scene).unwrap();
             let d = |p: Parameter| sens.get(p).unwrap().derivative.value().unwrap();
             assert!(
                 rel(d(Parameter::ExtraAcceleration), expected.d_g_t) <= 1e-12,
@@ -274,7 +277,9 @@ fn ideal_continuous_signal_stalls_at_the_sliding_friction() {
             let expected = ideal_load(a_r, period, a_0, a_d, g_t).unwrap();
             assert_eq!(expected.regime, IdealRegime::SlipSlip);
             let scene = ideal_scene(kappa, g_t);
-            let report = stickslip::run(&scene).unwrap();
+            let report = stickslip::run(&scene, &stickslip::RunOptions::default())
+                .and_then(stickslip::Outcome::into_report)
+                .unwrap();
             assert!(report.indicators.v_inf > 0.0);
             // v_inf -> 0 here: against the rod's velocity scale a_R T.
             let v = report.indicators.v_inf;
@@ -283,7 +288,7 @@ fn ideal_continuous_signal_stalls_at_the_sliding_friction() {
                 "kappa {kappa}, eps {eps}: {v:e} vs {:e}",
                 expected.v_inf
             );
-            let sens = stickslip::sensitivities(&scene, &report).unwrap();
+            let sens = report.sensitivities(&scene).unwrap();
             let slope = sens
                 .get(Parameter::ExtraAcceleration)
                 .unwrap()
@@ -301,7 +306,7 @@ fn ideal_continuous_signal_stalls_at_the_sliding_friction() {
         }
         let beyond = ideal_scene(kappa, stall - 1e-3 * a_d);
         assert!(matches!(
-            stickslip::simulate(&beyond).unwrap(),
+            stickslip::run(&beyond, &stickslip::RunOptions::default()).unwrap(),
             Outcome::RunAway { .. }
         ));
     }
@@ -315,7 +320,7 @@ fn limit_from_rest(
     parameters: &[Parameter],
 ) -> Option<(f64, Vec<Derivative>, Vec<String>)> {
     let motor = Motor::new(scene.motor).ok()?;
-    let signal = stickslip::Signal::build(&scene.signal, &motor).ok()?;
+    let signal = stickslip::signal::Signal::build(&scene.signal, &motor).ok()?;
     let boundary = sensitivity::from_rest(&signal, &motor)?;
     let s = sensitivity::of_steady_state(&scene.signal, &scene.motor, boundary, parameters).ok()?;
     let tokens: Vec<String> = s.events.iter().map(|e| token(&e.kind)).collect();

@@ -160,8 +160,13 @@ fn a_pair_of_orbits_next_to_a_jump_of_the_map_is_reported_as_the_motion_from_res
     scene.motor.extra_acceleration = -46.573362;
     let c = cases::Comparison::of(&scene);
     assert_eq!(c.strict_verdict(), Verdict::Agrees, "{}", c.describe());
-    let r = stickslip::run(&scene).expect("a steady state");
-    assert_eq!(r.certificate.kind, stickslip::CertificateKind::Covering);
+    let r = stickslip::run(&scene, &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .expect("a steady state");
+    assert_eq!(
+        r.certificate.kind,
+        stickslip::simulation::CertificateKind::Covering
+    );
     let other = r.certificate.other_fixed_point.expect("the search's orbit");
     assert!(other > 0.0 && other < 1e-6, "{other}");
     assert!(r.certificate.evaluations <= 256, "{:?}", r.certificate);
@@ -191,12 +196,17 @@ fn a_slider_without_sliding_friction_is_caught_where_the_motion_from_rest_ends()
     assert_eq!(c.strict_verdict(), Verdict::Agrees, "{}", c.describe());
     let rest = c.rest.expect("the motion from rest settles");
     assert!(rest.periods > 500_000, "{rest:?}");
-    let r = stickslip::run(&scene).expect("a steady state");
-    assert_eq!(r.certificate.kind, stickslip::CertificateKind::Covering);
+    let r = stickslip::run(&scene, &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .expect("a steady state");
+    assert_eq!(
+        r.certificate.kind,
+        stickslip::simulation::CertificateKind::Covering
+    );
     assert!(r.certificate.evaluations <= 2 * 256, "{:?}", r.certificate);
     // Caught at the rod's lowest velocity, released a little above it.
-    let motor = stickslip::Motor::new(scene.motor).unwrap();
-    let signal = stickslip::Signal::build(&scene.signal, &motor).unwrap();
+    let motor = stickslip::motor::Motor::new(scene.motor).unwrap();
+    let signal = stickslip::signal::Signal::build(&scene.signal, &motor).unwrap();
     let lowest = signal.velocity_range().0;
     let v = r.indicators.v_inf;
     assert!(
@@ -218,32 +228,32 @@ fn a_run_away_proven_by_the_covering_is_the_one_the_start_up_reaches() {
     scene.motor.mu_dynamic = 0.0;
     scene.motor.extra_acceleration = -0.011;
     scene.outputs.indicators = vec![stickslip::Indicator::VInf];
-    let proven = stickslip::simulate(&scene).expect("runs");
+    let proven = stickslip::run(&scene, &stickslip::RunOptions::default()).expect("runs");
     let stickslip::Outcome::RunAway { direction, state } = &proven else {
         panic!("not a run-away: {proven:?}");
     };
-    assert_eq!(*direction, stickslip::Direction::Backward);
+    assert_eq!(*direction, stickslip::engine::Direction::Backward);
     assert_eq!(state.periods_simulated, 0);
     let evaluations = state.certificate_evaluations.expect("proven by a covering");
     assert!(evaluations <= 256, "{evaluations}");
-    let json = stickslip::to_json(&proven, &scene);
+    let json = stickslip::report::to_json(&proven, &scene);
     assert_eq!(json["steady_state_certificate"], "covering");
     assert_eq!(json["work"]["certificate_evaluations"], evaluations);
 
     scene.run.verify_steady_state = true;
-    let simulated = stickslip::simulate(&scene).expect("runs");
+    let simulated = stickslip::run(&scene, &stickslip::RunOptions::default()).expect("runs");
     let stickslip::Outcome::RunAway { direction, state } = &simulated else {
         panic!("the start-up does not run away: {simulated:?}");
     };
-    assert_eq!(*direction, stickslip::Direction::Backward);
+    assert_eq!(*direction, stickslip::engine::Direction::Backward);
     assert!(state.periods_simulated > 100_000, "{state:?}");
     assert_eq!(state.certificate_evaluations, None);
     assert!(state.final_velocity < signal_lowest(&scene));
 }
 
 fn signal_lowest(scene: &stickslip::Scene) -> f64 {
-    let motor = stickslip::Motor::new(scene.motor).unwrap();
-    stickslip::Signal::build(&scene.signal, &motor)
+    let motor = stickslip::motor::Motor::new(scene.motor).unwrap();
+    stickslip::signal::Signal::build(&scene.signal, &motor)
         .unwrap()
         .velocity_range()
         .0

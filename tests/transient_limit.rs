@@ -6,7 +6,7 @@
 //! `run.max_periods`.
 
 use stickslip::analysis::{self, AnalysisOptions, StatsWanted};
-use stickslip::{EventEngine, EventOptions, Outcome, Scene};
+use stickslip::{Outcome, Scene, engine::EventEngine, engine::EventOptions};
 
 /// The paper's motor (docs/model.md section 6) on the plain Fourier signal
 /// of 2 harmonics with `kappa = 0.2`, loaded at its stall force
@@ -60,7 +60,7 @@ fn rounding_bound(max_rod_velocity: f64, events: u64) -> f64 {
 #[test]
 fn an_orbit_repeating_within_rounding_reaches_its_limit_in_three_periods() {
     let scene = stalled();
-    let (signal, motor) = stickslip::build(&scene).expect("the scene builds");
+    let stickslip::scene::BuiltScene { signal, motor } = scene.build().expect("the scene builds");
     let mut engine = EventEngine::new(&signal, &motor, EventOptions::default());
     // As in a run, the fixed point is searched from rest first. The
     // engine's root finder refines its models of the signal lazily, so the
@@ -106,8 +106,10 @@ fn an_orbit_repeating_within_rounding_reaches_its_limit_in_three_periods() {
 #[test]
 fn a_stalled_slider_is_reported_with_v_inf_zero_and_a_verified_start_up() {
     let scene = stalled();
-    let (signal, _) = stickslip::build(&scene).expect("the scene builds");
-    let outcome = stickslip::simulate(&scene).expect("the scene runs");
+    let stickslip::scene::BuiltScene { signal, motor: _ } =
+        scene.build().expect("the scene builds");
+    let outcome =
+        stickslip::run(&scene, &stickslip::RunOptions::default()).expect("the scene runs");
     let Outcome::Steady(r) = &outcome else {
         panic!("no steady state: {}", outcome.regime());
     };

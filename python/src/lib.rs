@@ -11,10 +11,10 @@
 //!   grammar (`--set` on the command line), applied before the scene is
 //!   checked. A path is read exactly as `stickslip run PATH` reads it.
 //! * Every output is the command line's by construction: `run` returns
-//!   [`stickslip::to_json`] of the same outcome `stickslip run --json`
+//!   [`stickslip::report::to_json`] of the same outcome `stickslip run --json`
 //!   prints; trajectories and per-period series are the tables of
 //!   `run --trajectory` / `--periods-series`
-//!   ([`stickslip::exact_tables`]); a sweep runs
+//!   ([`stickslip::export::exact_tables`]); a sweep runs
 //!   [`stickslip::sweep::execute`] into a private temporary directory and
 //!   hands back the CSV it wrote; `characteristic` and `optimize` run the
 //!   command line in process ([`stickslip::cli::main_with`]) and return
@@ -33,7 +33,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use stickslip::{Error, Outcome, Override, Scene};
+use stickslip::{Error, Outcome, Scene, scene::Override};
 
 create_exception!(
     _stickslip,
@@ -233,7 +233,7 @@ fn overrides_of(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<(Vec<Override
             let text = format!("{path}={value}");
             parsed.push(
                 text.parse::<Override>()
-                    .map_err(|e: stickslip::OverrideError| scene_error(e))?,
+                    .map_err(|e: stickslip::scene::OverrideError| scene_error(e))?,
             );
             set.push(text);
         }
@@ -322,7 +322,7 @@ fn run(
     let loaded = load(scene, overrides)?;
     let scene = loaded.scene;
     let outcome = py
-        .allow_threads(|| stickslip::simulate(&scene))
+        .allow_threads(|| stickslip::run(&scene, &stickslip::RunOptions::default()))
         .map_err(library_error)?;
     let warnings = scene.warnings().iter().map(ToString::to_string).collect();
     Ok(Run {
@@ -392,7 +392,7 @@ fn columns_of(py: Python<'_>, csv: &str) -> PyResult<Columns> {
 impl Run {
     /// The JSON object of `stickslip run --json`, as a dict.
     fn to_dict(&self, py: Python<'_>) -> PyResult<PyObject> {
-        json_to_py(py, &stickslip::to_json(&self.outcome, &self.scene))
+        json_to_py(py, &stickslip::report::to_json(&self.outcome, &self.scene))
     }
 
     /// `steady` regime name, `run-away` or `not_converged`.
@@ -422,7 +422,7 @@ impl Run {
         check_times(&times)?;
         let scene = &self.scene;
         let (table, _) = py
-            .allow_threads(|| stickslip::exact_tables(scene, &times, false))
+            .allow_threads(|| stickslip::export::exact_tables(scene, &times, false))
             .map_err(scene_error)?;
         columns_of(py, &table)
     }
@@ -432,7 +432,7 @@ impl Run {
     fn periods(&self, py: Python<'_>) -> PyResult<Columns> {
         let scene = &self.scene;
         let (_, table) = py
-            .allow_threads(|| stickslip::exact_tables(scene, &[], true))
+            .allow_threads(|| stickslip::export::exact_tables(scene, &[], true))
             .map_err(scene_error)?;
         columns_of(py, &table.unwrap_or_default())
     }
@@ -443,14 +443,14 @@ impl Run {
     /// reported with one).
     fn events(&self, py: Python<'_>) -> PyResult<PyObject> {
         let json = if self.scene.outputs.events {
-            stickslip::to_json(&self.outcome, &self.scene)
+            stickslip::report::to_json(&self.outcome, &self.scene)
         } else {
             let mut scene = self.scene.clone();
             scene.outputs.events = true;
             let outcome = py
-                .allow_threads(|| stickslip::simulate(&scene))
+                .allow_threads(|| stickslip::run(&scene, &stickslip::RunOptions::default()))
                 .map_err(library_error)?;
-            stickslip::to_json(&outcome, &scene)
+            stickslip::report::to_json(&outcome, &scene)
         };
         let log = serde_json::json!({
             "event_log": json.get("event_log").cloned().unwrap_or(Value::Null),
@@ -626,8 +626,9 @@ fn signal(
     overrides: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyObject> {
     let loaded = load(scene, overrides)?;
-    let (signal, motor) = stickslip::build(&loaded.scene).map_err(library_error)?;
-    let d = stickslip::SignalDescription::new(&loaded.scene.signal, &signal, &motor);
+    let stickslip::scene::BuiltScene { signal, motor } =
+        loaded.scene.build().map_err(library_error)?;
+    let d = stickslip::signal::SignalDescription::new(&loaded.scene.signal, &signal, &motor);
     json_to_py(py, &d.to_json())
 }
 
@@ -645,7 +646,7 @@ fn compare(
     tolerance: Option<f64>,
 ) -> PyResult<PyObject> {
     let loaded = load(scene, overrides)?;
-    let mut user = stickslip::CompareData::default();
+    let mut user = stickslip::compare::UserData::default();
     for (column, bytes) in data {
         let values: Vec<f64> = bytes
             .chunks_exact(8)
@@ -660,15 +661,15 @@ fn compare(
             "v_p" => &mut user.v_p,
             _ => continue,
         };
-        *slot = Some(stickslip::CompareColumn::new(&column, values));
+        *slot = Some(stickslip::compare::Column::new(&column, values));
     }
-    let mut options = stickslip::CompareOptions::default();
+    let mut options = stickslip::compare::CompareOptions::default();
     if let Some(t) = tolerance {
         options.tolerance = t;
     }
     let scene = &loaded.scene;
     let report = py
-        .allow_threads(|| stickslip::compare_data(scene, &[(name, user)], &options))
+        .allow_threads(|| stickslip::compare::compare_data(scene, &[(name, user)], &options))
         .map_err(scene_error)?;
     json_to_py(py, &report.to_json())
 }
@@ -814,7 +815,7 @@ fn sweep_columns(py: Python<'_>, csv: &str) -> PyResult<Columns> {
 }
 
 /// Median wall time (s) of `repeats` runs of the default scene in Rust,
-/// `stickslip::simulate(&Scene::default())`, for the benchmark that
+/// `stickslip::run(&Scene::default(), &stickslip::RunOptions::default())`, for the benchmark that
 /// compares it with `stickslip.run` (examples/python/bench.py).
 #[pyfunction]
 fn time_default_run(py: Python<'_>, repeats: usize) -> PyResult<f64> {
@@ -823,7 +824,7 @@ fn time_default_run(py: Python<'_>, repeats: usize) -> PyResult<f64> {
         (0..repeats.max(1))
             .map(|_| {
                 let start = std::time::Instant::now();
-                let outcome = stickslip::simulate(&scene);
+                let outcome = stickslip::run(&scene, &stickslip::RunOptions::default());
                 std::hint::black_box(&outcome);
                 start.elapsed().as_secs_f64()
             })
@@ -838,7 +839,7 @@ fn time_default_run(py: Python<'_>, repeats: usize) -> PyResult<f64> {
 fn _stickslip(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("SimulationError", m.py().get_type::<SimulationError>())?;
-    m.add("VERSION", stickslip::VERSION)?;
+    m.add("VERSION", stickslip::provenance::VERSION)?;
     m.add_class::<Run>()?;
     m.add_function(wrap_pyfunction!(default_scene, m)?)?;
     m.add_function(wrap_pyfunction!(resolve, m)?)?;

@@ -26,7 +26,7 @@
 //! start-up does not reach: the caller certifies it (`certificate`: a
 //! covering of the gap between rest and the fixed point by pieces proven
 //! free of fixed points) or finds the nearer one
-//! ([`crate::simulation::run_with`]). The transient from rest can
+//! ([`crate::Outcome::of_engine`]). The transient from rest can
 //! be simulated until its own period-to-period changes have died out (with
 //! Aitken's extrapolation); the two steady states must agree.
 //!

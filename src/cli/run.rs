@@ -132,7 +132,7 @@ pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failur
     }
     let outcome = simulation::simulate(&scene).map_err(|e| e.to_string())?;
     let sensitivities = args.sensitivities.then(|| match outcome.report() {
-        Some(r) => simulation::sensitivities(&at, r).map_err(|e| e.to_string()),
+        Some(r) => r.sensitivities(&at).map_err(|e| e.to_string()),
         None => Err(format!("no periodic steady state ({})", outcome.regime())),
     });
     let text = if args.json {

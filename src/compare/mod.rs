@@ -1,13 +1,13 @@
 //! Cross-validation of a user's fixed-step results (`stickslip compare`),
 //! in two halves kept apart: the readers turn files into arrays
-//! ([`read`]: names and units; CSV in `csv_file`, MAT-files in
+//! (`read`: names and units; CSV in `csv_file`, MAT-files in
 //! `mat_file`), and the analysis takes arrays ([`compare_data`], for any
 //! caller with arrays): the exact solution is evaluated at the user's own
-//! times ([`exact`]), the per-period series is formed from `x_S` when the
-//! file has none ([`periods`]), the rod motion is checked ([`rod`]),
-//! events are located and matched ([`events`]), errors are measured per
+//! times (`exact`), the per-period series is formed from `x_S` when the
+//! file has none (`periods`), the rod motion is checked (`rod`),
+//! events are located and matched (`events`), errors are measured per
 //! file (`analysis`) and, over several files of one scene at different
-//! steps, their convergence order is fitted ([`convergence`]).
+//! steps, their convergence order is fitted (`convergence`).
 //! docs/model.md section 12 states the equations of the period ends, the
 //! event times and the split of the `v_inf` error.
 //!
@@ -388,7 +388,7 @@ pub fn compare_data(
     let mut exact_scene = scene.clone();
     exact_scene.run.engine = EngineKind::Event;
     let (signal, motor) = simulation::build(&exact_scene)?;
-    let run = simulation::run(&exact_scene)?;
+    let run = simulation::steady(&exact_scene)?;
     let v_inf = run.indicators.v_inf;
     let description = SignalDescription::new(&scene.signal, &signal, &motor);
     let exact = analysis::Exact {

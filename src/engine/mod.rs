@@ -1,14 +1,15 @@
 //! Engines walk the slider through time (docs/model.md section 1).
 //!
-//! * [`event`]: the exact event-driven engine. It finds every stick/slip
+//! * `event.rs`: the exact event-driven engine ([`EventEngine`]). It finds every stick/slip
 //!   transition and every zero of the relative velocity by root finding on
 //!   the analytic signal and moves the slider in closed form between them.
-//! * [`fixed_step`]: the fixed-step reference (first-order Moreau-Jean).
-//! * [`contact`]: the friction law both share: the band of `a_R`, the mode
+//! * `fixed_step.rs`: the fixed-step reference, first-order Moreau-Jean
+//!   ([`FixedStepEngine`]).
+//! * `contact.rs`: the friction law both share: the band of `a_R`, the mode
 //!   a relative velocity leads to, the event a change of mode is, and the
 //!   segment handed to observers. Each engine only finds *when* a change
 //!   happens.
-//! * [`observer`]: what an engine hands its observers, and the period end
+//! * `observer.rs`: what an engine hands its observers, and the period end
 //!   it reports.
 //!
 //! The shared vocabulary lives here: the slider's [`Mode`], typed
@@ -17,6 +18,8 @@
 
 use crate::error::SimulationError;
 use crate::signal::Signal;
+pub use event::{EventEngine, EventOptions};
+pub use fixed_step::{FixedStepEngine, FixedStepOptions};
 pub use observer::{Observer, PeriodEnd};
 
 pub(crate) mod contact;

@@ -200,7 +200,7 @@ fn grid() -> Result<&'static [GridPoint], PlotError> {
                         signal: SignalSpec::fourier(25e-6, sqrt_kappa * sqrt_kappa, n, sigma),
                         ..Scene::default()
                     };
-                    let report = crate::simulation::run(&scene).map_err(|e| e.to_string())?;
+                    let report = crate::simulation::steady(&scene).map_err(|e| e.to_string())?;
                     points.push(GridPoint::from_report(level, n, sigma, &report));
                 }
             }

@@ -149,7 +149,7 @@ pub fn stroke_scaling(base: &Scene) -> Result<Figure, PlotError> {
             ];
             scene.outputs.trajectory = false;
             scene.outputs.events = false;
-            simulation::run(&scene).map(|r| Run {
+            simulation::steady(&scene).map(|r| Run {
                 period: r.period,
                 v_inf: r.indicators.v_inf,
                 startup_periods: r.startup_periods,

@@ -183,7 +183,7 @@ fn simulate(
     figure: &str,
 ) -> Result<(Timeline, Signal, Option<u64>), PlotError> {
     let (timeline, signal) = record(scene, periods, figure)?;
-    let report = simulation::run(scene).map_err(PlotError::simulation(figure))?;
+    let report = simulation::steady(scene).map_err(PlotError::simulation(figure))?;
     Ok((timeline, signal, report.startup_periods))
 }
 

@@ -1,7 +1,7 @@
 //! Scene files: what to simulate and what to report, in TOML.
 //!
 //! A scene is read in two steps, so that nothing unchecked reaches the
-//! simulation: serde reads the text into a [`SceneFile`], which mirrors the
+//! simulation: serde reads the text into a `SceneFile`, which mirrors the
 //! format and rejects unknown fields, and [`Scene::try_from`] checks every
 //! value and builds the typed [`Scene`]. The field names are the user-facing
 //! contract of `docs/interface.md` and do not change.
@@ -120,11 +120,11 @@ pub use overrides::{Override, OverrideError};
 pub(crate) use toml_error::parse_message;
 pub use warnings::Warning;
 
-use crate::error::{Num, ParamError, SceneError};
+use crate::error::{Error, Num, ParamError, SceneError};
 use crate::indicator::Indicator;
 use crate::motor::{Motor, MotorParams};
 use crate::power::ActuatorParams;
-use crate::signal::SignalSpec;
+use crate::signal::{Signal, SignalSpec};
 use serde::{Deserialize, Serialize};
 use std::io::Read;
 use std::path::Path;
@@ -339,7 +339,24 @@ impl Default for Scene {
     }
 }
 
+/// The motor and the rod signal of a scene, built ([`Scene::build`]).
+#[derive(Debug, Clone)]
+pub struct BuiltScene {
+    /// The rod signal, with its event structure (docs/model.md section 2).
+    pub signal: Signal,
+    /// The slider and its friction.
+    pub motor: Motor,
+}
+
 impl Scene {
+    /// Builds the scene's motor and its rod signal (the signal's
+    /// `kappa`-based kinds depend on the motor's `a_0`).
+    pub fn build(&self) -> Result<BuiltScene, Error> {
+        let motor = Motor::new(self.motor)?;
+        let signal = Signal::build(&self.signal, &motor)?;
+        Ok(BuiltScene { signal, motor })
+    }
+
     /// Parses and validates a scene from TOML text; `origin` names the
     /// source in error messages (a path, or `<string>`).
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, SceneError> {

@@ -30,7 +30,7 @@
 //! engine and below the run: [`of_steady_state`] takes the boundary
 //! velocity of a steady state found by the run
 //! ([`crate::analysis::SteadyState::boundary_velocity`]), so that `v_inf`
-//! is not searched again; `crate::simulation::sensitivities` is the same
+//! is not searched again; `RunReport::sensitivities` is the same
 //! for a scene and its run.
 //!
 //! Files: `tangent` (a parameter direction), `parameter` (the scene's

@@ -1,13 +1,13 @@
 //! Rod excitation signals `x_R(t)` (docs/model.md section 2, the paper's
 //! section 4).
 //!
-//! * [`ideal`]: the ideal signal (11), constant acceleration `a_R = kappa a_0`
+//! * `ideal`: the ideal signal (11), constant acceleration `a_R = kappa a_0`
 //!   on `[0, t_1]`, rest on `(t_1, T)`; position and velocity jump back to 0
 //!   at the end of the acceleration phase.
-//! * [`fourier`]: the first `n` harmonics of the ideal signal, coefficients
+//! * `fourier`: the first `n` harmonics of the ideal signal, coefficients
 //!   (12)-(14), optionally with Lanczos sigma factors (15), scaled to the
 //!   stroke and shifted so that the minimum lies at `t = 0` with value 0.
-//! * [`harmonics`]: an explicit list of harmonics `(k, d_k, phi_k)` at a given
+//! * `harmonics`: an explicit list of harmonics `(k, d_k, phi_k)` at a given
 //!   fundamental frequency, with the same optional scaling and shift.
 //!
 //! A [`Signal`] is periodic with period `T`. It is evaluated at a *phase*
@@ -29,6 +29,7 @@ use crate::error::{Num, ParamError};
 use crate::motor::Motor;
 use std::cmp::Ordering;
 
+pub use description::SignalDescription;
 pub use fourier::FourierSignal;
 pub(crate) use ideal::IdealSignal;
 pub use shape::{Drive, Held, IdealShape};

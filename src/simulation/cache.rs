@@ -1,6 +1,7 @@
 //! Signals built once and shared between scenes (sweeps over the motor).
 
 use super::{Outcome, RunReport, simulate_built};
+use crate::engine::event::EventOptions;
 use crate::error::Error;
 use crate::motor::Motor;
 use crate::scene::Scene;
@@ -51,16 +52,16 @@ impl SignalCache {
         Ok(map.entry(key).or_insert(signal).clone())
     }
 
-    /// [`simulate`](super::simulate) with the signal from this cache.
-    pub fn simulate(&self, scene: &Scene) -> Result<Outcome, Error> {
+    /// [`run`](super::run) with the signal from this cache.
+    pub(crate) fn simulate(&self, scene: &Scene) -> Result<Outcome, Error> {
         let clock = Instant::now();
         let signal = self.get(scene)?;
         let motor = Motor::new(scene.motor)?;
-        simulate_built(scene, &signal, &motor, clock)
+        simulate_built(scene, &signal, &motor, EventOptions::default(), clock)
     }
 
-    /// [`run`](super::run) with the signal from this cache.
-    pub fn run(&self, scene: &Scene) -> Result<RunReport, Error> {
-        Ok(self.simulate(scene)?.into_report()?)
+    /// [`SignalCache::simulate`] for callers that need a steady state.
+    pub(crate) fn run(&self, scene: &Scene) -> Result<RunReport, Error> {
+        self.simulate(scene)?.into_report()
     }
 }

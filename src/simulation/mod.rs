@@ -31,7 +31,7 @@
 //! 3. so a fixed point found by a search from rest is the limit when no
 //!    other fixed point lies between the orbit and it.
 //!
-//! The fast path searches `P(v) = v` from rest ([`analysis::fixed_point`])
+//! The fast path searches `P(v) = v` from rest ([`crate::analysis::fixed_point`])
 //! and uses the fixed point only when it is *established* (the map
 //! contracts there, `1 - P' > 0`, and the engine's bound on the fixed
 //! point, which contains the range where `P(v) - v` is indistinguishable
@@ -43,12 +43,12 @@
 //! within twice its bound. Where the covering meets a point the map does
 //! not move towards `v*`, a nearer fixed point lies in the bracket it gives
 //! (`P` maps it into itself); that one is found
-//! ([`analysis::fixed_point_between`]), established and certified in turn,
+//! ([`crate::analysis::fixed_point_between`]), established and certified in turn,
 //! and the first is reported as the other fixed point
 //! ([`SteadyStateCertificate`]). When the covering does not close within
 //! its budget of map evaluations (or a nearer fixed point is not
 //! established), the orbit from rest decides: the start-up is simulated
-//! until its limit is established ([`analysis::transient`]: an exact
+//! until its limit is established ([`crate::analysis::transient`]: an exact
 //! repetition, a repetition within rounding in periods with a stick phase, or a
 //! remaining distance bounded by the measured contraction), and the
 //! steady state is taken there (a fixed point searched from the orbit's
@@ -111,40 +111,57 @@ use crate::signal::Signal;
 use drive::simulate_timed;
 use std::time::Instant;
 
-/// Builds the signal and motor of a scene.
-pub fn build(scene: &Scene) -> Result<(Signal, Motor), Error> {
-    let motor = Motor::new(scene.motor)?;
-    let signal = Signal::build(&scene.signal, &motor)?;
-    Ok((signal, motor))
+/// How [`run`] runs a scene, beyond what the scene itself says
+/// (`RunOptions::default()`: build the scene's signal, the event engine's
+/// default tolerances).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RunOptions<'a> {
+    /// The rod signal, already built: by [`Scene::build`], or shared from a
+    /// [`SignalCache`] between scenes that differ in the motor only. The
+    /// set-up time is then the motor's and the engine's alone. `None`:
+    /// the run builds `scene.signal`.
+    pub signal: Option<&'a Signal>,
+    /// The event engine's tolerances and limits (`run.engine = "event"`).
+    pub event: EventOptions,
 }
 
-/// Runs a scene with the engine it names; every physical outcome is a
-/// result.
-pub fn simulate(scene: &Scene) -> Result<Outcome, Error> {
-    let clock = Instant::now();
-    let (signal, motor) = build(scene)?;
-    simulate_built(scene, &signal, &motor, clock)
-}
-
-/// [`simulate`] with the scene's signal already built (by
-/// [`Signal::build`] from `scene.signal` and the scene's motor, e.g. from
-/// a [`SignalCache`]): the set-up time is then the motor's and the
-/// engine's alone.
-pub fn simulate_with_signal(scene: &Scene, signal: &Signal) -> Result<Outcome, Error> {
+/// Runs a scene with the engine it names: the start-up, the steady state
+/// and every indicator the scene asks for. Every physical outcome (a
+/// steady state, a run-away, a start-up that did not settle) is an
+/// [`Outcome`]; only bad input and internal failures are errors.
+pub fn run(scene: &Scene, options: &RunOptions) -> Result<Outcome, Error> {
     let clock = Instant::now();
     let motor = Motor::new(scene.motor)?;
-    simulate_built(scene, signal, &motor, clock)
+    match options.signal {
+        Some(signal) => simulate_built(scene, signal, &motor, options.event, clock),
+        None => {
+            let signal = Signal::build(&scene.signal, &motor)?;
+            simulate_built(scene, &signal, &motor, options.event, clock)
+        }
+    }
+}
+
+/// The signal and motor of a scene, for the crate's own front ends.
+pub(crate) fn build(scene: &Scene) -> Result<(Signal, Motor), Error> {
+    let built = scene.build()?;
+    Ok((built.signal, built.motor))
+}
+
+/// [`run`] with the default options.
+pub(crate) fn simulate(scene: &Scene) -> Result<Outcome, Error> {
+    run(scene, &RunOptions::default())
 }
 
 pub(super) fn simulate_built(
     scene: &Scene,
     signal: &Signal,
     motor: &Motor,
+    event: EventOptions,
     clock: Instant,
 ) -> Result<Outcome, Error> {
     let mut outcome = match scene.run.engine {
         EngineKind::Event => {
-            let engine = EventEngine::new(signal, motor, EventOptions::default());
+            let engine = EventEngine::new(signal, motor, event);
             simulate_timed(engine, scene, motor, clock)?
         }
         EngineKind::Fixed => {
@@ -164,49 +181,52 @@ pub(super) fn simulate_built(
     Ok(outcome)
 }
 
-/// Runs a scene with the engine it names, for callers that need a steady
-/// state: a run-away or an unestablished limit is an error here.
-pub fn run(scene: &Scene) -> Result<RunReport, Error> {
-    Ok(simulate(scene)?.into_report()?)
+/// [`run`] for callers that need a steady state: a run-away or an
+/// unestablished limit is an error here.
+pub(crate) fn steady(scene: &Scene) -> Result<RunReport, Error> {
+    simulate(scene)?.into_report()
 }
 
-/// [`run`] with a prepared engine.
-pub fn run_with<E: PeriodEngine>(
+/// [`Outcome::of_engine`] for callers that need a steady state.
+pub(crate) fn run_with<E: PeriodEngine>(
     engine: E,
     scene: &Scene,
     motor: &Motor,
 ) -> Result<RunReport, Error> {
-    Ok(simulate_with(engine, scene, motor)?.into_report()?)
+    Outcome::of_engine(engine, scene, motor)?.into_report()
 }
 
-/// The analysis a scene asks for with a prepared engine (set-up time 0).
-pub fn simulate_with<E: PeriodEngine>(
-    engine: E,
-    scene: &Scene,
-    motor: &Motor,
-) -> Result<Outcome, Error> {
-    simulate_timed(engine, scene, motor, Instant::now())
-}
-
-/// The exact sensitivities of `v_inf` to every parameter of `scene`
-/// ([`crate::sensitivity::Parameter::all_for`]) at the steady state of its
-/// run `report` (docs/model.md section 14). Only the event engine's steady
-/// state has them.
-pub fn sensitivities(
-    scene: &Scene,
-    report: &RunReport,
-) -> Result<crate::sensitivity::Sensitivities, Error> {
-    if scene.run.engine != EngineKind::Event {
-        return Err(SimulationError::NoSensitivity(
-            "they are exact for the event engine only (run.engine = \"event\")".to_owned(),
-        )
-        .into());
+impl Outcome {
+    /// The analysis a scene asks for, on an engine already set up (its
+    /// own signal and options, or an engine of the caller's own): the
+    /// scene's `run.engine` is not read, the set-up time is 0.
+    pub fn of_engine<E: PeriodEngine>(
+        engine: E,
+        scene: &Scene,
+        motor: &Motor,
+    ) -> Result<Outcome, Error> {
+        simulate_timed(engine, scene, motor, Instant::now())
     }
-    let parameters = crate::sensitivity::Parameter::all_for(&scene.signal);
-    crate::sensitivity::of_steady_state(
-        &scene.signal,
-        &scene.motor,
-        report.steady.boundary_velocity,
-        &parameters,
-    )
+}
+
+impl RunReport {
+    /// The exact sensitivities of `v_inf` to every parameter of `scene`
+    /// ([`crate::sensitivity::Parameter::all_for`]) at this steady state,
+    /// the report of a run of `scene` (docs/model.md section 14). Only the
+    /// event engine's steady state has them.
+    pub fn sensitivities(&self, scene: &Scene) -> Result<crate::sensitivity::Sensitivities, Error> {
+        if scene.run.engine != EngineKind::Event {
+            return Err(SimulationError::NoSensitivity(
+                "they are exact for the event engine only (run.engine = \"event\")".to_owned(),
+            )
+            .into());
+        }
+        let parameters = crate::sensitivity::Parameter::all_for(&scene.signal);
+        crate::sensitivity::of_steady_state(
+            &scene.signal,
+            &scene.motor,
+            self.steady.boundary_velocity,
+            &parameters,
+        )
+    }
 }

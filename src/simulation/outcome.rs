@@ -5,7 +5,7 @@
 use crate::analysis::error_estimate::ErrorEstimate;
 use crate::analysis::{SteadyIndicators, SteadyState, Transient};
 use crate::engine::{Direction, Event, EventCounts, Segment, WorkCounters};
-use crate::error::SimulationError;
+use crate::error::{Error, SimulationError};
 use crate::indicator::Indicator;
 use crate::power::PowerReport;
 use std::time::Duration;
@@ -350,21 +350,22 @@ impl Outcome {
 
     /// The steady-state report, or the outcome as an error for callers
     /// that need a steady state (figures, stability checks).
-    pub fn into_report(self) -> Result<RunReport, SimulationError> {
-        match self {
-            Outcome::Steady(r) => Ok(*r),
-            Outcome::RunAway { direction, state } => Err(SimulationError::NoSteadyState {
+    pub fn into_report(self) -> Result<RunReport, Error> {
+        let error = match self {
+            Outcome::Steady(r) => return Ok(*r),
+            Outcome::RunAway { direction, state } => SimulationError::NoSteadyState {
                 direction: match direction {
                     Direction::Forward => "growing",
                     Direction::Backward => "falling",
                 },
                 velocity: state.final_velocity,
                 periods: state.periods_simulated,
-            }),
-            Outcome::NotConverged(state) => Err(SimulationError::NotConverged {
+            },
+            Outcome::NotConverged(state) => SimulationError::NotConverged {
                 periods: state.periods_simulated,
                 last_v_p: state.last_v_p.unwrap_or(0.0),
-            }),
-        }
+            },
+        };
+        Err(error.into())
     }
 }

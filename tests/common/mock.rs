@@ -1,10 +1,13 @@
 //! A mock engine with a known period map, shared by the tests of the
 //! fixed-point logic.
 
-use stickslip::Signal;
-use stickslip::SimulationError;
-use stickslip::{Direction, Mode, PeriodEngine, PeriodStart, WorkCounters};
-use stickslip::{Observer, PeriodEnd};
+use stickslip::error::SimulationError;
+use stickslip::signal::Signal;
+use stickslip::{
+    engine::Direction, engine::Mode, engine::PeriodEngine, engine::PeriodStart,
+    engine::WorkCounters,
+};
+use stickslip::{engine::Observer, engine::PeriodEnd};
 
 /// A period map with three fixed points, for the analysis with any engine:
 /// in units `x = v / a`, `g(x) = P(x) - x` is 0.2 (rising gently) up to

@@ -15,20 +15,20 @@ use std::process::{Command, Output};
 use stickslip::Indicator;
 use stickslip::RunReport;
 use stickslip::SignalSpec;
-use stickslip::{EventEngine, EventOptions};
-use stickslip::{Motor, MotorParams, Scene, Signal};
+use stickslip::{MotorParams, Scene, motor::Motor, signal::Signal};
+use stickslip::{engine::EventEngine, engine::EventOptions};
 
 /// The name of an event in an event structure (`tests/sensitivity.rs`,
 /// `tests/optimize_gradient.rs`). A grazing that sticks is the zero of
 /// `v_rel` it is in the limit (decided within the engine's zero-velocity
 /// tolerance): the same branch.
-pub fn event_token(kind: &stickslip::EventKind) -> String {
-    use stickslip::EventKind;
+pub fn event_token(kind: &stickslip::engine::EventKind) -> String {
+    use stickslip::engine::EventKind;
     match *kind {
         EventKind::StickToSlip { to } => format!("exit {to:?}"),
         EventKind::SlipToStick
         | EventKind::Grazing {
-            then: stickslip::Mode::Stick,
+            then: stickslip::engine::Mode::Stick,
         } => "stick".to_owned(),
         EventKind::Reversal { to } => format!("reversal {to:?}"),
         EventKind::Grazing { then } => format!("grazing {then:?}"),
@@ -68,14 +68,18 @@ pub fn fourier(stroke: f64, kappa: f64, n: usize, sigma: bool) -> SignalSpec {
 
 /// Runs a scene with the event engine.
 pub fn run(scene: &Scene) -> RunReport {
-    stickslip::run(scene).expect("scene runs")
+    stickslip::run(scene, &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .expect("scene runs")
 }
 
 /// Runs a scene's motor and outputs with an arbitrary signal.
 pub fn run_signal(scene: &Scene, signal: &Signal) -> RunReport {
     let motor = Motor::new(scene.motor).expect("valid motor");
     let engine = EventEngine::new(signal, &motor, EventOptions::default());
-    stickslip::run_with(engine, scene, &motor).expect("signal runs")
+    stickslip::Outcome::of_engine(engine, scene, &motor)
+        .and_then(stickslip::Outcome::into_report)
+        .expect("signal runs")
 }
 
 /// Motor parameters with other friction coefficients.

@@ -22,15 +22,15 @@
 
 use std::time::Instant;
 use stickslip::Error;
-use stickslip::EventLog;
 use stickslip::Indicator;
 use stickslip::RunReport;
 use stickslip::Scene;
 use stickslip::numerics::CompensatedSum;
-use stickslip::{EventEngine, EventOptions};
-use stickslip::{EventKind, Mode, PeriodEngine, PeriodStart};
-use stickslip::{FourierSignal, Signal, SignalSpec};
-use stickslip::{Motor, MotorParams};
+use stickslip::observer::EventLog;
+use stickslip::{MotorParams, motor::Motor};
+use stickslip::{SignalSpec, signal::FourierSignal, signal::Signal};
+use stickslip::{engine::EventEngine, engine::EventOptions};
+use stickslip::{engine::EventKind, engine::Mode, engine::PeriodEngine, engine::PeriodStart};
 
 /// What a stress case is checked against.
 #[derive(Debug, Clone)]
@@ -384,11 +384,13 @@ pub fn catalogue() -> Vec<StressCase> {
 
 fn run_scene(case: &StressCase, scene: &Scene) -> Result<RunReport, Error> {
     match &case.signal {
-        None => stickslip::run(scene),
+        None => stickslip::run(scene, &stickslip::RunOptions::default())
+            .and_then(stickslip::Outcome::into_report),
         Some(signal) => {
             let motor = Motor::new(scene.motor)?;
             let engine = EventEngine::new(signal, &motor, EventOptions::default());
-            stickslip::run_with(engine, scene, &motor)
+            stickslip::Outcome::of_engine(engine, scene, &motor)
+                .and_then(stickslip::Outcome::into_report)
         }
     }
 }
@@ -461,7 +463,9 @@ pub fn run_case(case: &StressCase) -> StressOutcome {
                 law,
             },
             Ok(r),
-        ) => match stickslip::run(reference) {
+        ) => match stickslip::run(reference, &stickslip::RunOptions::default())
+            .and_then(stickslip::Outcome::into_report)
+        {
             Ok(base) => {
                 extra_periods += base.work.periods;
                 let d = relative(r.indicators.v_inf, base.indicators.v_inf * ratio);
@@ -470,8 +474,11 @@ pub fn run_case(case: &StressCase) -> StressOutcome {
             Err(e) => (false, format!("reference failed: {e}")),
         },
         (Check::Median { rel }, Ok(r)) => {
-            let median = match stickslip::build(&case.scene) {
-                Ok((Signal::Fourier(f), _)) => f.velocity_median(),
+            let median = match case.scene.build() {
+                Ok(stickslip::scene::BuiltScene {
+                    signal: Signal::Fourier(f),
+                    ..
+                }) => f.velocity_median(),
                 _ => f64::NAN,
             };
             let d = relative(r.indicators.v_inf, median);
@@ -540,11 +547,12 @@ fn mirrored_run(case: &StressCase, scene: &Scene) -> Result<RunReport, Error> {
         None => Signal::build(&scene.signal, &motor)?,
     }
     .mirrored();
-    stickslip::run_with(
+    stickslip::Outcome::of_engine(
         EventEngine::new(&signal, &motor, EventOptions::default()),
         scene,
         &motor,
     )
+    .and_then(stickslip::Outcome::into_report)
 }
 
 fn grazing_check(case: &StressCase, phase_fraction: f64) -> (bool, String) {
@@ -581,7 +589,7 @@ fn grazing_check(case: &StressCase, phase_fraction: f64) -> (bool, String) {
 }
 
 fn long_run_check(case: &StressCase, r: &RunReport, periods: u64, rel: f64) -> (bool, String) {
-    let Ok((signal, motor)) = stickslip::build(&case.scene) else {
+    let Ok(stickslip::scene::BuiltScene { signal, motor }) = case.scene.build() else {
         return (false, "invalid scene".into());
     };
     let mut engine = EventEngine::new(&signal, &motor, EventOptions::default());

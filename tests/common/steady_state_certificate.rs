@@ -42,9 +42,14 @@ use rand::{RngExt, SeedableRng};
 use std::collections::{HashMap, VecDeque};
 use std::time::{Duration, Instant};
 use stickslip::optimize::{self, Objective, OptimizeTable, Overrides, Settings};
-use stickslip::{ActuatorParams, EventCounts, Indicator, Motor, MotorParams, Outcome};
-use stickslip::{EventEngine, EventOptions, Mode, PeriodEngine, PeriodStart};
-use stickslip::{Scene, Signal, SignalSpec};
+use stickslip::{
+    Indicator, MotorParams, Outcome, engine::EventCounts, motor::Motor, power::ActuatorParams,
+};
+use stickslip::{Scene, SignalSpec, signal::Signal};
+use stickslip::{
+    engine::EventEngine, engine::EventOptions, engine::Mode, engine::PeriodEngine,
+    engine::PeriodStart,
+};
 
 /// The paper's Table 1 actuator (docs/model.md section 4), as the
 /// `[actuator]` table of `examples/scenes/optimize.toml` writes it:
@@ -185,7 +190,7 @@ pub struct Comparison {
     /// `run.verify_steady_state = true`: the run's own start-up limit.
     pub v_inf_transient: Option<f64>,
     /// That limit's own error estimate (m/s): the part of
-    /// [`stickslip::SteadyStateCheck::tolerance`] that is the start-up's
+    /// [`stickslip::simulation::SteadyStateCheck::tolerance`] that is the start-up's
     /// (the other part is the fixed point's estimate).
     pub transient_tolerance: Option<f64>,
     /// `steady_state_check.agrees` of the verifying run.
@@ -234,10 +239,12 @@ impl Comparison {
     pub fn of(scene: &Scene) -> Comparison {
         let mut plain = scene.clone();
         plain.run.verify_steady_state = false;
-        let outcome = stickslip::simulate(&plain).expect("a valid scene runs");
+        let outcome =
+            stickslip::run(&plain, &stickslip::RunOptions::default()).expect("a valid scene runs");
         let mut verifying = scene.clone();
         verifying.run.verify_steady_state = true;
-        let checked = stickslip::simulate(&verifying).expect("a valid scene runs");
+        let checked = stickslip::run(&verifying, &stickslip::RunOptions::default())
+            .expect("a valid scene runs");
         let report = outcome.report();
         let (check, transient) = match &checked {
             Outcome::Steady(r) => (r.steady_state_check, r.transient.as_ref()),
@@ -599,7 +606,7 @@ impl Family {
         match (knob, &mut scene.signal) {
             (Knob::Load, _) => scene.motor.extra_acceleration = x,
             (Knob::Kappa, SignalSpec::Fourier { shape, .. }) => {
-                shape.drive = stickslip::Drive::Kappa(x)
+                shape.drive = stickslip::signal::Drive::Kappa(x)
             }
             (Knob::Amplitude(k), SignalSpec::Harmonics { amplitudes, .. }) => {
                 amplitudes[k - 1] *= x;
@@ -636,7 +643,8 @@ pub fn structure(scene: &Scene) -> Option<(bool, EventCounts)> {
     quick.outputs.indicators = vec![Indicator::VInf];
     quick.actuator = None;
     quick.run.verify_steady_state = false;
-    let outcome = stickslip::simulate(&quick).expect("a valid scene runs");
+    let outcome =
+        stickslip::run(&quick, &stickslip::RunOptions::default()).expect("a valid scene runs");
     outcome
         .report()
         .map(|r| (r.indicators.stiction_fraction > 0.0, r.steady.stats.events))
