@@ -10,7 +10,7 @@
 
 use std::time::Instant;
 use stickslip::Scene;
-use stickslip::characteristic::{self, Options};
+use stickslip::characteristic::{self, CharacteristicOptions};
 
 fn median(mut xs: Vec<f64>) -> f64 {
     xs.sort_by(f64::total_cmp);
@@ -30,7 +30,7 @@ fn main() {
         .and_then(|a| a.parse().ok())
         .unwrap_or(21);
     let scene = Scene::default();
-    let options = Options::default();
+    let options = CharacteristicOptions::default();
     let mut walls = Vec::new();
     let mut cpus = Vec::new();
     let mut last = None;

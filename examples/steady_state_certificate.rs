@@ -195,7 +195,7 @@ fn regressions() {
     );
     let mut no_sliding = stickslip::Scene::default();
     no_sliding.motor.mu_dynamic = 0.0;
-    let options = stickslip::characteristic::Options::default();
+    let options = stickslip::characteristic::CharacteristicOptions::default();
     let mut evaluations = 0;
     let t = median_time(3, || {
         let c = stickslip::characteristic::characteristic(&no_sliding, &options).expect("runs");

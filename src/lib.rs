@@ -122,7 +122,7 @@ pub mod sweep;
 pub mod symbol;
 
 pub use error::Error;
-pub use indicator::{Indicator, UnknownIndicator};
+pub use indicator::Indicator;
 pub use motor::MotorParams;
 pub use scene::Scene;
 pub use signal::SignalSpec;

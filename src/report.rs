@@ -19,10 +19,9 @@ use crate::scene::Scene;
 use crate::scene::SceneFile;
 use crate::sensitivity::{Derivative, Sensitivities};
 use crate::signal::Held;
-use crate::simulation::{CertificateKind, Outcome, RunReport, Unsettled};
+use crate::simulation::{CertificateKind, Outcome, RunReport, RunTimes, Unsettled};
 use serde_json::{Map, Value, json};
 use std::fmt::Write as _;
-use std::time::Duration;
 
 /// `value` rounded to the digits its absolute error `err` supports (15
 /// significant digits without an estimate), then `± err`; an error of 0
@@ -102,7 +101,11 @@ fn header(outcome: &Outcome, scene: &Scene) -> Map<String, Value> {
 
 fn times_json(
     m: &mut Map<String, Value>,
-    (setup, simulation, wall): (Duration, Duration, Duration),
+    RunTimes {
+        setup,
+        simulation,
+        wall,
+    }: RunTimes,
 ) {
     m.insert("wall_time_s".into(), number(wall.as_secs_f64()));
     m.insert("setup_time_s".into(), number(setup.as_secs_f64()));
@@ -328,14 +331,12 @@ fn signal_line(out: &mut String, period: f64, f_max: Option<f64>) {
     );
 }
 
-fn cost_line(
-    out: &mut String,
-    periods: u64,
-    events: u64,
-    roots: u64,
-    times: (Duration, Duration, Duration),
-) {
-    let (setup, simulation, wall) = times;
+fn cost_line(out: &mut String, periods: u64, events: u64, roots: u64, times: RunTimes) {
+    let RunTimes {
+        setup,
+        simulation,
+        wall,
+    } = times;
     let _ = writeln!(
         out,
         "work: {periods} periods, {events} events, {roots} root iterations; wall time {:.3} ms \
@@ -411,7 +412,7 @@ pub fn to_text(outcome: &Outcome) -> String {
     }
 }
 
-fn unsettled_text(out: &mut String, state: &Unsettled, times: (Duration, Duration, Duration)) {
+fn unsettled_text(out: &mut String, state: &Unsettled, times: RunTimes) {
     if let Some(v) = state.last_v_p {
         let _ = writeln!(
             out,
@@ -559,7 +560,11 @@ fn steady_text(r: &RunReport) -> String {
         r.work.periods,
         r.work.events.total(),
         r.work.root_iterations,
-        (r.setup_time, r.simulation_time, r.wall_time),
+        RunTimes {
+            setup: r.setup_time,
+            simulation: r.simulation_time,
+            wall: r.wall_time,
+        },
     );
     out
 }

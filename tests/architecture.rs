@@ -207,3 +207,138 @@ fn the_reader_finds_paths_and_groups_but_not_comments() {
     let found: Vec<String> = used_modules(&code(sample)).into_iter().collect();
     assert_eq!(found, ["a", "b", "c", "d", "h"]);
 }
+
+/// The names a public item is known by: every `pub struct`, `enum`,
+/// `trait`, `type` and `union` of the tree (the crate warns on a `pub` item
+/// no public path reaches, `unreachable_pub`, so each is public) and
+/// every `pub use ... as NAME`, with the files that define them.
+fn public_type_names() -> BTreeMap<String, Vec<String>> {
+    let mut files = Vec::new();
+    rust_files(&src(), &mut files);
+    let mut names: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for path in files {
+        if path.ends_with("main.rs") {
+            continue;
+        }
+        let text = code(&fs::read_to_string(&path).expect("source is readable"));
+        let rel = path
+            .strip_prefix(src())
+            .expect("inside src")
+            .display()
+            .to_string();
+        for name in defined_names(&text) {
+            names.entry(name).or_default().push(rel.clone());
+        }
+    }
+    names
+}
+
+/// The type names `code` defines publicly (see [`public_type_names`]).
+fn defined_names(code: &str) -> Vec<String> {
+    let ident = |s: &str| -> String {
+        s.chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect()
+    };
+    let mut out = Vec::new();
+    for line in code.lines() {
+        let line = line.trim_start();
+        for kind in ["struct", "enum", "trait", "type", "union"] {
+            if let Some(rest) = line.strip_prefix(&format!("pub {kind} ")) {
+                out.push(ident(rest));
+            }
+        }
+        if line.starts_with("pub use ") {
+            let mut rest = line;
+            while let Some(i) = rest.find(" as ") {
+                rest = &rest[i + 4..];
+                out.push(ident(rest));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn every_public_type_name_is_defined_once() {
+    let twice: Vec<String> = public_type_names()
+        .into_iter()
+        .filter(|(_, files)| files.len() > 1)
+        .map(|(name, files)| format!("{name}: {}", files.join(", ")))
+        .collect();
+    assert!(
+        twice.is_empty(),
+        "public type names defined more than once:\n{}",
+        twice.join("\n")
+    );
+}
+
+#[test]
+fn the_name_reader_sees_definitions_and_renames_but_not_crate_items() {
+    let code = "pub struct A;\n    pub enum B {}\npub(crate) struct C;\n\
+                pub use x::{D as E, F};\npub trait G {}\nstruct H;";
+    assert_eq!(defined_names(code), ["A", "B", "E", "G"]);
+}
+
+/// The crate root's public names (`pub use` and `pub mod` of `src/lib.rs`).
+fn root_names() -> (Vec<String>, Vec<String>) {
+    let text = code(&fs::read_to_string(src().join("lib.rs")).expect("lib.rs is readable"));
+    let (mut uses, mut mods) = (Vec::new(), Vec::new());
+    for item in text.split(';') {
+        let item = item.trim();
+        let item = item
+            .rsplit_once(")]")
+            .map_or(item, |(_, rest)| rest.trim_start());
+        if let Some(m) = item.strip_prefix("pub mod ") {
+            mods.push(m.trim().to_owned());
+        } else if let Some(u) = item.strip_prefix("pub use ") {
+            let names = u.rsplit_once('{').map_or(u, |(_, group)| group);
+            for name in names.trim_end_matches('}').split(',') {
+                let name = name.rsplit("::").next().unwrap_or(name).trim();
+                if !name.is_empty() {
+                    uses.push(name.to_owned());
+                }
+            }
+        }
+    }
+    (uses, mods)
+}
+
+/// The crate doc's section `## title`, up to the next section.
+fn crate_doc_section(title: &str) -> String {
+    let text = fs::read_to_string(src().join("lib.rs")).expect("lib.rs is readable");
+    let doc: String = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("//!"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let start = doc
+        .find(&format!("## {title}"))
+        .unwrap_or_else(|| panic!("the crate doc has a section {title}"));
+    let rest = &doc[start + 3 + title.len()..];
+    rest[..rest.find("\n ## ").unwrap_or(rest.len())].to_owned()
+}
+
+#[test]
+fn the_crate_root_names_only_what_its_docs_present() {
+    let (uses, mods) = root_names();
+    assert!(uses.contains(&"run".to_owned()) && mods.contains(&"engine".to_owned()));
+    let front_door = crate_doc_section("The front door");
+    let missing: Vec<&String> = uses
+        .iter()
+        .filter(|name| !front_door.contains(&format!("[`{name}`]")))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "root names not in the front door section: {missing:?}"
+    );
+    let data_path = crate_doc_section("The data path");
+    let missing: Vec<&String> = mods
+        .iter()
+        .filter(|name| !data_path.contains(&format!("[`{name}`]")))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "namespaces not in the data path: {missing:?}"
+    );
+}

@@ -13,7 +13,7 @@ use stickslip::Indicator;
 use stickslip::Outcome;
 use stickslip::SignalSpec;
 use stickslip::characteristic::StallKind;
-use stickslip::characteristic::{self, Characteristic, LoadAxis, Mark, Options};
+use stickslip::characteristic::{self, Characteristic, CharacteristicOptions, LoadAxis, LoadMark};
 use stickslip::{Scene, motor::Motor, signal::Signal};
 
 /// The characteristic of the default scene with the default options,
@@ -21,19 +21,19 @@ use stickslip::{Scene, motor::Motor, signal::Signal};
 fn default_characteristic() -> &'static Characteristic {
     static C: OnceLock<Characteristic> = OnceLock::new();
     C.get_or_init(|| {
-        characteristic::characteristic(&Scene::default(), &Options::default())
+        characteristic::characteristic(&Scene::default(), &CharacteristicOptions::default())
             .expect("the default scene has a characteristic")
     })
 }
 
 /// Options that sample little: for tests that need the stall force, the
 /// held band or the largest power, which do not depend on the sampling.
-fn coarse(range: (f64, f64)) -> Options {
-    Options {
+fn coarse(range: (f64, f64)) -> CharacteristicOptions {
+    CharacteristicOptions {
         range: Some(range),
         tolerance: 0.5,
         max_evaluations: 20,
-        ..Options::default()
+        ..CharacteristicOptions::default()
     }
 }
 
@@ -248,7 +248,11 @@ fn a_drive_held_by_a_band_stalls_at_the_band_edge() {
         "upper {} vs {upper}",
         band.upper
     );
-    assert!(c.points.iter().any(|p| p.marks.contains(&Mark::HeldEdge)));
+    assert!(
+        c.points
+            .iter()
+            .any(|p| p.marks.contains(&LoadMark::HeldEdge))
+    );
 }
 
 #[test]
@@ -411,11 +415,11 @@ fn incline_loads_are_the_weight_component() {
     // than the stall force, so the drive climbs at every angle, and at rest
     // it holds on any incline since mu_0 F_c > m_s g.
     let sc = Scene::default();
-    let options = Options {
+    let options = CharacteristicOptions {
         axis: LoadAxis::Incline,
         tolerance: 0.5,
         max_evaluations: 20,
-        ..Options::default()
+        ..CharacteristicOptions::default()
     };
     let c = characteristic::characteristic(&sc, &options).unwrap();
     let weight = sc.motor.slider_mass * characteristic::G;

@@ -12,8 +12,8 @@ use rand::{RngExt, SeedableRng};
 use std::f64::consts::{FRAC_PI_2, TAU};
 use stickslip::Scene;
 use stickslip::optimize::{
-    Measured, Objective, OptimizeTable, Overrides, Param, Problem, Series, Settings, Shape, Values,
-    gradient, gradient_by_differences,
+    HarmonicSeries, Measured, Objective, OptimizeTable, Overrides, Param, Problem, Settings, Shape,
+    Values, gradient, gradient_by_differences,
 };
 use stickslip::sensitivity::{self, Derivative, Parameter};
 
@@ -38,7 +38,7 @@ fn problem(n: i64, objective: Objective) -> Problem {
 /// The event structure of the steady period of `series` as a cyclic
 /// sequence (named by its smallest rotation), with what the run reported;
 /// `None` without a steady state.
-fn structure(p: &Problem, series: &Series) -> Option<(Vec<String>, Measured)> {
+fn structure(p: &Problem, series: &HarmonicSeries) -> Option<(Vec<String>, Measured)> {
     let m = p.measure(p.spec(series)).ok()?;
     let s = sensitivity::of_steady_state(&p.spec(series), &p.base.motor, m.boundary_velocity, &[])
         .ok()?;
@@ -56,7 +56,7 @@ fn structure(p: &Problem, series: &Series) -> Option<(Vec<String>, Measured)> {
 
 /// The series with one parameter moved by `delta` (amplitudes stay
 /// positive here: every amplitude is far above the step).
-fn moved(series: &Series, param: Param, delta: f64) -> Series {
+fn moved(series: &HarmonicSeries, param: Param, delta: f64) -> HarmonicSeries {
     let mut s = series.clone();
     match param {
         Param::Amplitude(k) => s.amplitudes[k - 1] += delta,

@@ -7,7 +7,7 @@
 
 use lopdf::{Document, Object};
 use stickslip::motor::Motor;
-use stickslip::plot::{Format, PRODUCER, Preset, scaling, signals, timeline};
+use stickslip::plot::{ImageFormat, PRODUCER, Preset, scaling, signals, timeline};
 
 const PT_PER_MM: f64 = 72.0 / 25.4;
 
@@ -63,10 +63,10 @@ fn pdf_pages_have_the_presets_width_and_embedded_text() {
     let f = signals::figure3(&Motor::default()).unwrap();
     for preset in Preset::ALL {
         let style = preset.style();
-        let bytes = f.encode(Format::Pdf, &style, 300.0).unwrap();
+        let bytes = f.encode(ImageFormat::Pdf, &style, 300.0).unwrap();
         assert_eq!(
             bytes,
-            f.encode(Format::Pdf, &style, 300.0).unwrap(),
+            f.encode(ImageFormat::Pdf, &style, 300.0).unwrap(),
             "{preset}: same bytes"
         );
         let doc = Document::load_mem(&bytes).unwrap();
@@ -95,7 +95,7 @@ fn png_has_the_requested_pixel_size() {
         (Preset::Slide, 96.0),
     ] {
         let style = preset.style();
-        let bytes = f.encode(Format::Png, &style, dpi).unwrap();
+        let bytes = f.encode(ImageFormat::Png, &style, dpi).unwrap();
         assert_eq!(&bytes[1..4], b"PNG");
         let width = u32::from_be_bytes(bytes[16..20].try_into().unwrap());
         let height = u32::from_be_bytes(bytes[20..24].try_into().unwrap());
@@ -120,7 +120,7 @@ fn png_has_the_requested_pixel_size() {
         );
         assert_eq!(
             bytes,
-            f.encode(Format::Png, &style, dpi).unwrap(),
+            f.encode(ImageFormat::Png, &style, dpi).unwrap(),
             "{preset}: same bytes"
         );
     }
@@ -129,10 +129,19 @@ fn png_has_the_requested_pixel_size() {
 #[test]
 fn the_format_follows_the_extension() {
     use std::path::Path;
-    assert_eq!(Format::of(Path::new("a.svg")).unwrap(), Format::Svg);
-    assert_eq!(Format::of(Path::new("a.PDF")).unwrap(), Format::Pdf);
-    assert_eq!(Format::of(Path::new("dir/a.png")).unwrap(), Format::Png);
-    let e = Format::of(Path::new("a.jpg")).unwrap_err().to_string();
+    assert_eq!(
+        ImageFormat::of(Path::new("a.svg")).unwrap(),
+        ImageFormat::Svg
+    );
+    assert_eq!(
+        ImageFormat::of(Path::new("a.PDF")).unwrap(),
+        ImageFormat::Pdf
+    );
+    assert_eq!(
+        ImageFormat::of(Path::new("dir/a.png")).unwrap(),
+        ImageFormat::Png
+    );
+    let e = ImageFormat::of(Path::new("a.jpg")).unwrap_err().to_string();
     assert!(
         e.contains("a.jpg") && e.contains(".svg, .pdf or .png"),
         "{e}"
@@ -198,7 +207,7 @@ fn raster_renders_without_a_seam() {
             .unwrap();
         let raster = raster_box(&svg);
         for dpi in [254.0, 300.0, 600.0] {
-            let bytes = f.encode(Format::Png, &style, dpi).unwrap();
+            let bytes = f.encode(ImageFormat::Png, &style, dpi).unwrap();
             let mut reader = png::Decoder::new(&bytes[..]).read_info().unwrap();
             let mut pixels = vec![0; reader.output_buffer_size()];
             let info = reader.next_frame(&mut pixels).unwrap();

@@ -9,7 +9,7 @@ use common::{failure, ok, s, stickslip, write};
 use std::fs;
 use std::path::{Path, PathBuf};
 use stickslip::Scene;
-use stickslip::sweep::{self, Axis, AxisValue, Shard, Sweep};
+use stickslip::sweep::{self, AxisValue, Shard, Sweep, SweepAxis};
 
 /// 2 levels x 3 n x 2 sigma = 12 cases of the default scene's motor.
 /// A fresh directory for one test.
@@ -175,11 +175,11 @@ fn a_rerun_runs_only_the_missing_cases() {
 
     // The library on one thread, from an empty file, writes the same.
     fs::write(&out, "").unwrap();
-    let options = sweep::Options {
+    let options = sweep::SweepOptions {
         timing: false,
         progress: false,
         jobs: Some(1),
-        ..sweep::Options::new(&out)
+        ..sweep::SweepOptions::new(&out)
     };
     let summary = sweep::execute(&sweep::load(&file).unwrap(), &options).unwrap();
     assert_eq!((summary.ran, summary.skipped, summary.rows), (12, 0, 12));
@@ -232,11 +232,11 @@ fn level_axis_sets_sqrt_kappa_to_level_over_n() {
     let by_hand = [1.5, 1.5, 1.0, 1.0, 0.75, 0.75, 3.0, 3.0, 2.0, 2.0, 1.5, 1.5];
     for (case, sqrt_kappa) in cases.iter().zip(by_hand) {
         let n = case
-            .value(Axis::Harmonics)
+            .value(SweepAxis::Harmonics)
             .and_then(AxisValue::as_f64)
             .unwrap();
         let sigma = case
-            .value(Axis::Sigma)
+            .value(SweepAxis::Sigma)
             .and_then(AxisValue::as_bool)
             .unwrap();
         let manual = format!(

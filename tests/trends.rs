@@ -14,7 +14,7 @@ mod common;
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
 use stickslip::Scene;
-use stickslip::sweep::{self, Axis, AxisValue};
+use stickslip::sweep::{self, AxisValue, SweepAxis};
 
 const SWEEP: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/sweeps/section7.toml");
 
@@ -48,11 +48,11 @@ fn grid() -> &'static Grid {
     GRID.get_or_init(|| {
         let sweep = sweep::load(SWEEP).expect("the section 7 sweep loads");
         let cases = sweep.cases();
-        let levels: Vec<f64> = axis(&sweep, Axis::Level)
+        let levels: Vec<f64> = axis(&sweep, SweepAxis::Level)
             .iter()
             .map(|v| v.as_f64().unwrap())
             .collect();
-        let ns: Vec<usize> = axis(&sweep, Axis::Harmonics)
+        let ns: Vec<usize> = axis(&sweep, SweepAxis::Harmonics)
             .iter()
             .map(|v| v.as_f64().unwrap() as usize)
             .collect();
@@ -61,13 +61,16 @@ fn grid() -> &'static Grid {
             let r = result
                 .unwrap_or_else(|e| panic!("case {}: {e}", case.index))
                 .report;
-            let level = case.value(Axis::Level).and_then(AxisValue::as_f64).unwrap();
+            let level = case
+                .value(SweepAxis::Level)
+                .and_then(AxisValue::as_f64)
+                .unwrap();
             let n = case
-                .value(Axis::Harmonics)
+                .value(SweepAxis::Harmonics)
                 .and_then(AxisValue::as_f64)
                 .unwrap();
             let sigma = case
-                .value(Axis::Sigma)
+                .value(SweepAxis::Sigma)
                 .and_then(AxisValue::as_bool)
                 .unwrap();
             let point = Point {
@@ -86,7 +89,7 @@ fn grid() -> &'static Grid {
     })
 }
 
-fn axis(sweep: &sweep::Sweep, axis: Axis) -> Vec<AxisValue> {
+fn axis(sweep: &sweep::Sweep, axis: SweepAxis) -> Vec<AxisValue> {
     sweep
         .axes()
         .iter()
@@ -131,17 +134,17 @@ fn the_sweep_is_the_figures_grid() {
         .collect();
     reference_levels.dedup();
     let sweep = sweep::load(SWEEP).unwrap();
-    let levels: Vec<f64> = axis(&sweep, Axis::Level)
+    let levels: Vec<f64> = axis(&sweep, SweepAxis::Level)
         .iter()
         .map(|v| v.as_f64().unwrap())
         .collect();
     assert_eq!(levels, reference_levels);
-    let ns: Vec<f64> = axis(&sweep, Axis::Harmonics)
+    let ns: Vec<f64> = axis(&sweep, SweepAxis::Harmonics)
         .iter()
         .map(|v| v.as_f64().unwrap())
         .collect();
     assert_eq!(ns, [2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0]);
-    let sigma: Vec<_> = axis(&sweep, Axis::Sigma)
+    let sigma: Vec<_> = axis(&sweep, SweepAxis::Sigma)
         .iter()
         .map(|v| v.as_bool())
         .collect();

@@ -748,13 +748,13 @@ fn sweep(
         return Err(scene_error("jobs = 0: give at least 1 worker thread"));
     }
     let output = dir.0.join("sweep.csv");
-    let options = stickslip::sweep::Options {
+    let options = stickslip::sweep::SweepOptions {
         shard,
         timing,
         progress: false,
         jobs,
-        format: Some(stickslip::sweep::Format::Csv),
-        ..stickslip::sweep::Options::new(&output)
+        format: Some(stickslip::sweep::SweepFormat::Csv),
+        ..stickslip::sweep::SweepOptions::new(&output)
     };
     py.allow_threads(|| stickslip::sweep::execute(&sweep, &options))
         .map_err(scene_error)?;

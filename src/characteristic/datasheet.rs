@@ -14,7 +14,7 @@
 
 /// One datasheet entry.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Entry {
+pub struct DatasheetEntry {
     /// The key in JSON.
     pub key: &'static str,
     /// The value (`None`: not available).
@@ -59,29 +59,29 @@ impl Datasheet {
     }
 
     /// The entries in the order of the table above.
-    pub fn entries(&self) -> [Entry; 5] {
+    pub fn entries(&self) -> [DatasheetEntry; 5] {
         [
-            Entry {
+            DatasheetEntry {
                 key: "max_speed",
                 value: Some(self.max_speed),
                 unit: "m/s",
             },
-            Entry {
+            DatasheetEntry {
                 key: "stall_force",
                 value: self.stall_force,
                 unit: "N",
             },
-            Entry {
+            DatasheetEntry {
                 key: "holding_force",
                 value: Some(self.holding_force),
                 unit: "N",
             },
-            Entry {
+            DatasheetEntry {
                 key: "max_output_power",
                 value: self.max_output_power,
                 unit: "W",
             },
-            Entry {
+            DatasheetEntry {
                 key: "recommended_load",
                 value: self.recommended_load,
                 unit: "N",

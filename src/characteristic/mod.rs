@@ -67,7 +67,7 @@ mod transient;
 
 use crate::error::{Num, ParamError};
 use crate::scene::Scene;
-pub use datasheet::{Datasheet, Entry};
+pub use datasheet::{Datasheet, DatasheetEntry};
 pub use domain::Limit;
 pub use evaluate::{Counts, Evaluation};
 use evaluate::{Evaluator, Purpose};
@@ -187,7 +187,7 @@ impl LoadAxis {
 
 /// How to compute a characteristic.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Options {
+pub struct CharacteristicOptions {
     /// The load axis.
     pub axis: LoadAxis,
     /// The range sampled, in the axis unit; `None`: the whole range.
@@ -198,9 +198,9 @@ pub struct Options {
     pub max_evaluations: u64,
 }
 
-impl Default for Options {
+impl Default for CharacteristicOptions {
     fn default() -> Self {
-        Options {
+        CharacteristicOptions {
             axis: LoadAxis::Force,
             range: None,
             tolerance: 1e-3,
@@ -209,7 +209,7 @@ impl Default for Options {
     }
 }
 
-impl Options {
+impl CharacteristicOptions {
     /// Checks the options; errors name the command-line flag.
     pub fn validate(&self) -> Result<(), CharacteristicError> {
         let bad = |flag, value: f64, requirement: &str| CharacteristicError::Option {
@@ -254,7 +254,7 @@ impl Options {
 
 /// Which special load a point is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Mark {
+pub enum LoadMark {
     /// Zero load.
     NoLoad,
     /// The stall force.
@@ -271,16 +271,16 @@ pub enum Mark {
     UnsettledLimit,
 }
 
-impl Mark {
+impl LoadMark {
     /// The name in outputs.
     pub fn name(self) -> &'static str {
         match self {
-            Mark::NoLoad => "no_load",
-            Mark::Stall => "stall",
-            Mark::HeldEdge => "held_edge",
-            Mark::MaxPower => "max_power",
-            Mark::RunAwayLimit => "run_away_limit",
-            Mark::UnsettledLimit => "not_converged_limit",
+            LoadMark::NoLoad => "no_load",
+            LoadMark::Stall => "stall",
+            LoadMark::HeldEdge => "held_edge",
+            LoadMark::MaxPower => "max_power",
+            LoadMark::RunAwayLimit => "run_away_limit",
+            LoadMark::UnsettledLimit => "not_converged_limit",
         }
     }
 }
@@ -295,7 +295,7 @@ pub struct Point {
     /// `d v_inf / d F` there.
     pub slope: Slope,
     /// The special loads it is (empty for a plain sample).
-    pub marks: Vec<Mark>,
+    pub marks: Vec<LoadMark>,
 }
 
 /// The incline's own numbers.
@@ -367,7 +367,7 @@ impl Characteristic {
 /// The characteristic of `scene` (module docs).
 pub fn characteristic(
     scene: &Scene,
-    options: &Options,
+    options: &CharacteristicOptions,
 ) -> Result<Characteristic, CharacteristicError> {
     let clock = Instant::now();
     options.validate()?;
@@ -421,7 +421,7 @@ pub fn characteristic(
     // The points: samples, then the special loads inside the range.
     let (f_lo, f_hi) = (axis.force(range.0, m), axis.force(range.1, m));
     let mut points: Vec<Point> = Vec::new();
-    let mut add = |e: Evaluation, mark: Option<Mark>| {
+    let mut add = |e: Evaluation, mark: Option<LoadMark>| {
         if let Some(p) = points.iter_mut().find(|p| p.evaluation.load == e.load) {
             p.marks.extend(mark);
             return;
@@ -439,24 +439,24 @@ pub fn characteristic(
     for s in &sampled.samples {
         add(s.evaluation, None);
     }
-    add(no_load, Some(Mark::NoLoad));
-    add(found.stall.at, Some(Mark::Stall));
+    add(no_load, Some(LoadMark::NoLoad));
+    add(found.stall.at, Some(LoadMark::Stall));
     if let Some(band) = &found.band {
         for edge in [band.lower, band.upper] {
-            add(ev.at(edge, Purpose::HeldBand)?, Some(Mark::HeldEdge));
+            add(ev.at(edge, Purpose::HeldBand)?, Some(LoadMark::HeldEdge));
         }
     }
     if let Some(p) = &max_power {
         for e in &p.grid {
             add(*e, None);
         }
-        add(p.at, Some(Mark::MaxPower));
+        add(p.at, Some(LoadMark::MaxPower));
     }
     for limit in [below, above].into_iter().flatten() {
         let mark = if limit.first_unsteady.is_unsettled() {
-            Mark::UnsettledLimit
+            LoadMark::UnsettledLimit
         } else {
-            Mark::RunAwayLimit
+            LoadMark::RunAwayLimit
         };
         add(limit.last_steady, Some(mark));
     }

@@ -9,7 +9,7 @@
 //! another output, and that the figure's format and directory are usable.
 
 use super::{Failure, SceneOptions, Streams, refuse_outputs, write_out};
-use crate::characteristic::{self, LoadAxis, Options, table};
+use crate::characteristic::{self, CharacteristicOptions, LoadAxis, table};
 use crate::plot::Preset;
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
@@ -109,7 +109,7 @@ pub(crate) fn characteristic(
     let mut scene = super::load_scene(args.scene.as_deref(), &args.set)?;
     let holding = scene.motor.mu_static * scene.motor.contact_force;
     let (lo, hi) = axis.default_range(holding);
-    let options = Options {
+    let options = CharacteristicOptions {
         axis,
         range: (args.from.is_some() || args.to.is_some())
             .then(|| (args.from.unwrap_or(lo), args.to.unwrap_or(hi))),

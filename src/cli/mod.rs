@@ -298,7 +298,7 @@ pub(crate) fn refuse_output_over_input(output: &Path, inputs: &[&Path]) -> Resul
 /// Checks that a figure named by `flag` can be written: its extension picks
 /// a format (`.svg`, `.pdf`, `.png`) and its directory exists.
 pub(crate) fn check_figure_path(flag: &str, figure: &Path) -> Result<(), Failure> {
-    crate::plot::Format::of(figure)
+    crate::plot::ImageFormat::of(figure)
         .map_err(|e| e.to_string().replacen("-o ", &format!("{flag} "), 1))?;
     let dir = match figure.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,

@@ -13,7 +13,7 @@
 use super::{Failure, SceneOptions, Streams, refuse_outputs, write_out};
 use crate::optimize::map::{self, MapGrid};
 use crate::optimize::{self, OptimizeTable, Overrides, Settings, output};
-use crate::plot::{Format, Preset, optimize as figures};
+use crate::plot::{ImageFormat, Preset, optimize as figures};
 use crate::scene::{self, Scene};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -116,7 +116,7 @@ fn check_outputs(args: &OptimizeArgs) -> Result<(), Failure> {
         ("--map-figure", &args.map_figure),
     ] {
         if let Some(path) = figure {
-            Format::of(path).map_err(|_| {
+            ImageFormat::of(path).map_err(|_| {
                 format!(
                     "{flag} {}: the extension must be .svg, .pdf or .png",
                     path.display()

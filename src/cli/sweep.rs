@@ -64,12 +64,12 @@ pub(crate) fn sweep(args: SweepArgs, streams: &mut Streams<'_>) -> Result<u8, Fa
     if !args.quiet {
         super::print_warnings(sweep.base(), streams);
     }
-    let options = sweep::Options {
+    let options = sweep::SweepOptions {
         shard: args.shard,
         timing: !args.no_timing,
         progress: !args.quiet,
         jobs: args.jobs.map(|j| j as usize),
-        ..sweep::Options::new(&output)
+        ..sweep::SweepOptions::new(&output)
     };
     let s = {
         // The first signal stops the sweep between cases, not the process.

@@ -1,8 +1,9 @@
 //! Engines walk the slider through time (docs/model.md section 1).
 //!
-//! * `event.rs`: the exact event-driven engine ([`EventEngine`]). It finds every stick/slip
-//!   transition and every zero of the relative velocity by root finding on
-//!   the analytic signal and moves the slider in closed form between them.
+//! * `event.rs`: the exact event-driven engine ([`EventEngine`]). It
+//!   finds every stick/slip transition and every zero of the relative
+//!   velocity by root finding on the analytic signal and moves the slider
+//!   in closed form between them.
 //! * `fixed_step.rs`: the fixed-step reference, first-order Moreau-Jean
 //!   ([`FixedStepEngine`]).
 //! * `contact.rs`: the friction law both share: the band of `a_R`, the mode

@@ -59,7 +59,7 @@
 //! [`super::params`]).
 
 use super::objective::Values;
-use super::params::{Series, Shape, wrap};
+use super::params::{HarmonicSeries, Shape, wrap};
 use super::problem::{Measured, Problem};
 use crate::indicator::Indicator;
 use crate::scene::EngineKind;
@@ -102,7 +102,7 @@ pub(crate) struct Counted {
 /// The series with one parameter moved by `delta`; an amplitude moved
 /// below 0 becomes the positive amplitude with the phase plus `pi`
 /// (the same signal).
-fn moved(series: &Series, param: Param, delta: f64) -> Series {
+fn moved(series: &HarmonicSeries, param: Param, delta: f64) -> HarmonicSeries {
     let mut s = series.clone();
     match param {
         Param::Amplitude(k) => {
@@ -121,7 +121,7 @@ fn moved(series: &Series, param: Param, delta: f64) -> Series {
 
 /// The central difference of every `Values` quantity along one parameter
 /// (module docs).
-fn central(problem: &Problem, series: &Series, param: Param) -> Result<Values, String> {
+fn central(problem: &Problem, series: &HarmonicSeries, param: Param) -> Result<Values, String> {
     let largest = series.amplitudes.iter().copied().fold(0.0, f64::max);
     let h = match param {
         Param::Amplitude(_) => STEP * largest,
@@ -140,7 +140,7 @@ fn central(problem: &Problem, series: &Series, param: Param) -> Result<Values, S
 /// parameter whose neighbouring runs have no steady state.
 pub fn gradient_by_differences(
     problem: &Problem,
-    series: &Series,
+    series: &HarmonicSeries,
     wrt: &[Param],
 ) -> Result<Vec<Values>, String> {
     wrt.iter()
@@ -153,7 +153,11 @@ pub fn gradient_by_differences(
 /// where the model gives them, central differences for the rest (module
 /// docs). Runs the series once for its steady orbit; `Err` when it has no
 /// steady state, or a needed difference cannot be taken.
-pub fn gradient(problem: &Problem, series: &Series, wrt: &[Param]) -> Result<Vec<Values>, String> {
+pub fn gradient(
+    problem: &Problem,
+    series: &HarmonicSeries,
+    wrt: &[Param],
+) -> Result<Vec<Values>, String> {
     let at = problem.measure(problem.spec(series))?;
     gradient_at(problem, series, &at, wrt).values
 }
@@ -161,7 +165,7 @@ pub fn gradient(problem: &Problem, series: &Series, wrt: &[Param]) -> Result<Vec
 /// [`gradient`] at a series whose run reported `at`, with the runs it made.
 pub(crate) fn gradient_at(
     problem: &Problem,
-    series: &Series,
+    series: &HarmonicSeries,
     at: &Measured,
     wrt: &[Param],
 ) -> Counted {
@@ -218,7 +222,11 @@ pub(crate) fn gradient_at(
 /// `(dU, dS)` per parameter (module docs), where the runs compute the
 /// power (`None` otherwise: the values are 0 and so are their
 /// derivatives).
-fn power_derivatives(problem: &Problem, series: &Series, wrt: &[Param]) -> Vec<Option<(f64, f64)>> {
+fn power_derivatives(
+    problem: &Problem,
+    series: &HarmonicSeries,
+    wrt: &[Param],
+) -> Vec<Option<(f64, f64)>> {
     let none = vec![None; wrt.len()];
     let Some(actuator) = &problem.base.actuator else {
         return none;

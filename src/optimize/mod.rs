@@ -10,7 +10,7 @@
 //!
 //! One idea per file:
 //!
-//! * `params`: the parametrisation ([`Shape`], [`Series`]);
+//! * `params`: the parametrisation ([`Shape`], [`HarmonicSeries`]);
 //! * `problem`: stroke, frequency, limits, one evaluation, the merit;
 //! * `objective`: the objectives and the values they are made of;
 //! * [`gradient`]: sensitivities to the signal's parameters (exact for
@@ -59,7 +59,7 @@ pub(crate) mod spec;
 
 pub use gradient::{Param, gradient, gradient_by_differences};
 pub use objective::{Objective, Values};
-pub use params::{Series, Shape};
+pub use params::{HarmonicSeries, Shape};
 pub use problem::{Limits, Measured, Problem};
 pub use search::{Found, Search, SearchOptions};
 pub use spec::{Keep, OptimizeTable, Overrides, Settings};

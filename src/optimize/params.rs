@@ -46,7 +46,7 @@ pub struct Shape {
 /// `d_k` (m, `>= 0`) and phases `phi_k` (rad), `k = 1..n`, before stroke
 /// scaling and shift.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Series {
+pub struct HarmonicSeries {
     /// `d_1 .. d_n` (m).
     pub amplitudes: Vec<f64>,
     /// `phi_1 .. phi_n` (rad).
@@ -153,7 +153,7 @@ impl Shape {
     /// The series a scene gives for this shape at stroke `stroke` (module
     /// docs): `d_k = |u_k| stroke / 2`, `phi_1 = 0` and `phi_k = psi_k`,
     /// each plus `pi` where `u_k < 0`, in `[0, 2 pi)`.
-    pub fn series(&self, stroke: f64) -> Series {
+    pub fn series(&self, stroke: f64) -> HarmonicSeries {
         let u = self.unit_amplitudes();
         let half = 0.5 * stroke;
         let mut amplitudes = Vec::with_capacity(u.len());
@@ -163,7 +163,7 @@ impl Shape {
             amplitudes.push(uk.abs() * half);
             phases.push(wrap(if *uk < 0.0 { psi + PI } else { psi }));
         }
-        Series { amplitudes, phases }
+        HarmonicSeries { amplitudes, phases }
     }
 
     /// The canonical coefficients `c_k = u_k e^(i psi_k)` as `(re, im)`,

@@ -27,7 +27,7 @@
 //! on the values the run reports, never by the penalty.
 
 use super::objective::{Objective, Values, startup_periods_continuous};
-use super::params::{Series, Shape};
+use super::params::{HarmonicSeries, Shape};
 use crate::indicator::Indicator;
 use crate::scene::{Outputs, Scene};
 use crate::signal::{IdealShape, SignalSpec};
@@ -127,7 +127,7 @@ pub struct Problem {
 impl Problem {
     /// The signal of a series: harmonics `1..n` of `f_0`, scaled to the
     /// stroke and shifted to the minimum.
-    pub fn spec(&self, series: &Series) -> SignalSpec {
+    pub fn spec(&self, series: &HarmonicSeries) -> SignalSpec {
         SignalSpec::Harmonics {
             frequency: self.f0,
             amplitudes: series.amplitudes.clone(),
@@ -185,7 +185,7 @@ impl Problem {
 
     /// The scene written for a series: the base scene (its outputs and run
     /// settings) with the series as its signal.
-    pub fn written_scene(&self, series: &Series) -> Scene {
+    pub fn written_scene(&self, series: &HarmonicSeries) -> Scene {
         let mut scene = self.base.clone();
         scene.signal = self.spec(series);
         scene

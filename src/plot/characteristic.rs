@@ -16,7 +16,9 @@
 use super::axes::tick_label;
 use super::style::{Dash, GREY, Marker, PALETTE};
 use super::{Axis, Figure, Look, Panel, Plot, PlotError, Preset, Series, min_max, padded};
-use crate::characteristic::{self, Characteristic, LoadAxis, Mark, Options, table};
+use crate::characteristic::{
+    self, Characteristic, CharacteristicOptions, LoadAxis, LoadMark, table,
+};
 use crate::scene::Scene;
 
 /// The look of a marked load: its own marker and colour, no line.
@@ -32,7 +34,7 @@ fn marked(marker: Marker, colour: usize) -> Look {
 /// The characteristic of `scene` with the default options (the force
 /// axis over the whole range), drawn.
 pub fn scene_characteristic(scene: &Scene, name: &str) -> Result<Figure, PlotError> {
-    let c = characteristic::characteristic(scene, &Options::default())
+    let c = characteristic::characteristic(scene, &CharacteristicOptions::default())
         .map_err(|e| PlotError::Argument(e.to_string()))?;
     figure(&c, scene, name)
 }
@@ -119,7 +121,7 @@ pub fn figure(c: &Characteristic, scene: &Scene, name: &str) -> Result<Figure, P
         look: Look::nth(0).weighted(1.2),
         kind: super::Kind::Curve,
     });
-    let at = |mark: Mark| -> Vec<(f64, f64)> {
+    let at = |mark: LoadMark| -> Vec<(f64, f64)> {
         c.points
             .iter()
             .filter(|p| p.marks.contains(&mark))
@@ -127,20 +129,20 @@ pub fn figure(c: &Characteristic, scene: &Scene, name: &str) -> Result<Figure, P
             .collect()
     };
     let marks = [
-        (Mark::NoLoad, "no-load speed", marked(Marker::Circle, 1)),
-        (Mark::Stall, "stall force", marked(Marker::Square, 2)),
+        (LoadMark::NoLoad, "no-load speed", marked(Marker::Circle, 1)),
+        (LoadMark::Stall, "stall force", marked(Marker::Square, 2)),
         (
-            Mark::MaxPower,
+            LoadMark::MaxPower,
             "largest output power",
             marked(Marker::Diamond, 3),
         ),
         (
-            Mark::RunAwayLimit,
+            LoadMark::RunAwayLimit,
             "runs away beyond",
             marked(Marker::Cross, 4),
         ),
         (
-            Mark::UnsettledLimit,
+            LoadMark::UnsettledLimit,
             "not converged beyond",
             marked(Marker::Cross, 5),
         ),

@@ -20,7 +20,7 @@ use std::path::Path;
 
 /// An output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Format {
+pub enum ImageFormat {
     /// SVG text.
     Svg,
     /// A one-page PDF.
@@ -29,18 +29,18 @@ pub enum Format {
     Png,
 }
 
-impl Format {
+impl ImageFormat {
     /// The format named by `path`'s extension (`svg`, `pdf`, `png`, any
     /// case).
-    pub fn of(path: &Path) -> Result<Format, PlotError> {
+    pub fn of(path: &Path) -> Result<ImageFormat, PlotError> {
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
         match ext.as_deref() {
-            Some("svg") => Ok(Format::Svg),
-            Some("pdf") => Ok(Format::Pdf),
-            Some("png") => Ok(Format::Png),
+            Some("svg") => Ok(ImageFormat::Svg),
+            Some("pdf") => Ok(ImageFormat::Pdf),
+            Some("png") => Ok(ImageFormat::Png),
             _ => Err(PlotError::Argument(format!(
                 "-o {}: the extension must be .svg, .pdf or .png",
                 path.display()

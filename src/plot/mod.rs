@@ -87,7 +87,7 @@ pub use axes::{Axis, superscript};
 pub use canvas::Anchor;
 pub use colorbar::ColorBar;
 pub use data::{Cell, Csv};
-pub use export::Format;
+pub use export::ImageFormat;
 pub use font::{FAMILY, text_width};
 pub use layout::{Plot, fitted};
 pub use legend::LegendEntry;
@@ -143,12 +143,17 @@ impl Figure {
     }
 
     /// The figure's bytes in `format` at `style` (`dpi` for PNG).
-    pub fn encode(&self, format: Format, style: &Style, dpi: f64) -> Result<Vec<u8>, PlotError> {
+    pub fn encode(
+        &self,
+        format: ImageFormat,
+        style: &Style,
+        dpi: f64,
+    ) -> Result<Vec<u8>, PlotError> {
         let svg = self.svg(style);
         match format {
-            Format::Svg => Ok(svg.into_bytes()),
-            Format::Pdf => export::pdf(&svg, PRODUCER, &self.name),
-            Format::Png => export::png(&svg, dpi, PRODUCER),
+            ImageFormat::Svg => Ok(svg.into_bytes()),
+            ImageFormat::Pdf => export::pdf(&svg, PRODUCER, &self.name),
+            ImageFormat::Png => export::png(&svg, dpi, PRODUCER),
         }
     }
 
@@ -156,7 +161,7 @@ impl Figure {
     /// ([`Figure::data`]) beside it ([`data_path`]: `path` with `.csv` appended), each
     /// atomically. The directory must exist. Returns the two paths.
     pub fn write(&self, path: &Path, style: &Style, dpi: f64) -> Result<[PathBuf; 2], PlotError> {
-        let format = Format::of(path)?;
+        let format = ImageFormat::of(path)?;
         let bytes = self.encode(format, style, dpi)?;
         let csv = data_path(path);
         write_atomically(path, &bytes)?;

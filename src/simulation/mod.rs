@@ -97,8 +97,8 @@ mod outcome;
 pub use crate::analysis::ErrorEstimate;
 pub use cache::SignalCache;
 pub use outcome::{
-    CertificateKind, Outcome, Regime, RunReport, SteadyStateCertificate, SteadyStateCheck,
-    Unsettled,
+    CertificateKind, Outcome, Regime, RunReport, RunTimes, SteadyStateCertificate,
+    SteadyStateCheck, Unsettled,
 };
 
 use crate::engine::PeriodEngine;

@@ -10,6 +10,17 @@ use crate::indicator::Indicator;
 use crate::power::PowerReport;
 use std::time::Duration;
 
+/// The time a run took ([`Outcome::times`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RunTimes {
+    /// The signal's and the engine's set-up.
+    pub setup: Duration,
+    /// The analysis: start-up, fixed point, indicators, power.
+    pub simulation: Duration,
+    /// All of it.
+    pub wall: Duration,
+}
+
 /// The cross-check of `run.verify_steady_state`: the start-up from rest run
 /// on to its own limit, against the steady state reported.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -337,14 +348,18 @@ impl Outcome {
         }
     }
 
-    /// `(setup, simulation, wall)` times.
-    pub fn times(&self) -> (Duration, Duration, Duration) {
-        match self {
+    /// The time the run took.
+    pub fn times(&self) -> RunTimes {
+        let (setup, simulation, wall) = match self {
             Outcome::Steady(r) => (r.setup_time, r.simulation_time, r.wall_time),
-            _ => {
-                let u = self.unsettled().expect("not steady");
-                (u.setup_time, u.simulation_time, u.wall_time)
+            Outcome::RunAway { state, .. } | Outcome::NotConverged(state) => {
+                (state.setup_time, state.simulation_time, state.wall_time)
             }
+        };
+        RunTimes {
+            setup,
+            simulation,
+            wall,
         }
     }
 

@@ -10,7 +10,7 @@ use std::str::FromStr;
 
 /// A sweep axis: a scene parameter that takes a list of values.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Axis {
+pub enum SweepAxis {
     /// `f_max` level `L = n sqrt(kappa)` (37), so `sqrt(kappa) = L / n`.
     Level,
     /// `sqrt(kappa)`.
@@ -41,49 +41,49 @@ pub enum Axis {
     ExtraAcceleration,
 }
 
-impl Axis {
+impl SweepAxis {
     /// Every axis, in case order (the first varies slowest).
-    pub const ALL: [Axis; 14] = [
-        Axis::Level,
-        Axis::SqrtKappa,
-        Axis::Kappa,
-        Axis::Frequency,
-        Axis::FMax,
-        Axis::Harmonics,
-        Axis::Sigma,
-        Axis::Stroke,
-        Axis::Duty,
-        Axis::MuStatic,
-        Axis::MuDynamic,
-        Axis::ContactForce,
-        Axis::SliderMass,
-        Axis::ExtraAcceleration,
+    pub const ALL: [SweepAxis; 14] = [
+        SweepAxis::Level,
+        SweepAxis::SqrtKappa,
+        SweepAxis::Kappa,
+        SweepAxis::Frequency,
+        SweepAxis::FMax,
+        SweepAxis::Harmonics,
+        SweepAxis::Sigma,
+        SweepAxis::Stroke,
+        SweepAxis::Duty,
+        SweepAxis::MuStatic,
+        SweepAxis::MuDynamic,
+        SweepAxis::ContactForce,
+        SweepAxis::SliderMass,
+        SweepAxis::ExtraAcceleration,
     ];
 
     /// The name in sweep files and output columns.
     pub fn name(self) -> &'static str {
         match self {
-            Axis::Level => "level",
-            Axis::SqrtKappa => "sqrt_kappa",
-            Axis::Kappa => "kappa",
-            Axis::Frequency => "frequency",
-            Axis::FMax => "f_max",
-            Axis::Harmonics => "harmonics",
-            Axis::Sigma => "sigma",
-            Axis::Stroke => "stroke",
-            Axis::Duty => "duty",
-            Axis::MuStatic => "mu_static",
-            Axis::MuDynamic => "mu_dynamic",
-            Axis::ContactForce => "contact_force",
-            Axis::SliderMass => "slider_mass",
-            Axis::ExtraAcceleration => "extra_acceleration",
+            SweepAxis::Level => "level",
+            SweepAxis::SqrtKappa => "sqrt_kappa",
+            SweepAxis::Kappa => "kappa",
+            SweepAxis::Frequency => "frequency",
+            SweepAxis::FMax => "f_max",
+            SweepAxis::Harmonics => "harmonics",
+            SweepAxis::Sigma => "sigma",
+            SweepAxis::Stroke => "stroke",
+            SweepAxis::Duty => "duty",
+            SweepAxis::MuStatic => "mu_static",
+            SweepAxis::MuDynamic => "mu_dynamic",
+            SweepAxis::ContactForce => "contact_force",
+            SweepAxis::SliderMass => "slider_mass",
+            SweepAxis::ExtraAcceleration => "extra_acceleration",
         }
     }
 
     /// Checks one value on its own (`field` is `axes.<name>[i]`).
     pub(super) fn check(self, field: &str, value: AxisValue) -> Result<(), ParamError> {
         match (self, value) {
-            (Axis::Harmonics, AxisValue::Integer(n)) => {
+            (SweepAxis::Harmonics, AxisValue::Integer(n)) => {
                 if usize::try_from(n).is_ok_and(|n| (1..=MAX_HARMONICS).contains(&n)) {
                     Ok(())
                 } else {
@@ -94,14 +94,14 @@ impl Axis {
                     ))
                 }
             }
-            (Axis::Sigma, AxisValue::Bool(_)) => Ok(()),
-            (Axis::MuStatic | Axis::MuDynamic, AxisValue::Number(x)) => {
+            (SweepAxis::Sigma, AxisValue::Bool(_)) => Ok(()),
+            (SweepAxis::MuStatic | SweepAxis::MuDynamic, AxisValue::Number(x)) => {
                 ParamError::non_negative(field, x).map(drop)
             }
-            (Axis::ExtraAcceleration, AxisValue::Number(x)) => {
+            (SweepAxis::ExtraAcceleration, AxisValue::Number(x)) => {
                 ParamError::finite(field, x).map(drop)
             }
-            (Axis::Duty, AxisValue::Number(x)) => {
+            (SweepAxis::Duty, AxisValue::Number(x)) => {
                 ParamError::positive(field, x)?;
                 if x > 1.0 {
                     Err(ParamError::out_of_range(
@@ -113,7 +113,7 @@ impl Axis {
                     Ok(())
                 }
             }
-            (Axis::SqrtKappa, AxisValue::Number(x)) => {
+            (SweepAxis::SqrtKappa, AxisValue::Number(x)) => {
                 ParamError::positive(field, x)?;
                 if (x * x).is_finite() && x * x > 0.0 {
                     Ok(())
@@ -146,7 +146,7 @@ impl Axis {
             SignalSpec::Harmonics {
                 scale_to_stroke, ..
             } => {
-                if self == Axis::Stroke && scale_to_stroke.is_none() {
+                if self == SweepAxis::Stroke && scale_to_stroke.is_none() {
                     return Some(
                         "the base signal (kind = \"harmonics\") has scale_to_stroke = false"
                             .to_owned(),
@@ -156,14 +156,17 @@ impl Axis {
             }
         };
         // A harmonics signal has a frequency of its own.
-        if self == Axis::Frequency {
+        if self == SweepAxis::Frequency {
             return None;
         }
         let needs_fourier = matches!(
             self,
-            Axis::Level | Axis::FMax | Axis::Harmonics | Axis::Sigma
+            SweepAxis::Level | SweepAxis::FMax | SweepAxis::Harmonics | SweepAxis::Sigma
         );
-        let needs_shape = matches!(self, Axis::SqrtKappa | Axis::Kappa | Axis::Duty);
+        let needs_shape = matches!(
+            self,
+            SweepAxis::SqrtKappa | SweepAxis::Kappa | SweepAxis::Duty
+        );
         (needs_fourier || (needs_shape && kind == "harmonics")).then(|| {
             format!(
                 "needs a base signal with kind = \"{}\", the base has kind = \"{kind}\"",
@@ -183,35 +186,35 @@ impl Axis {
         let motor = &mut scene.motor;
         let number = value.as_f64().unwrap_or(f64::NAN);
         match (self, &mut scene.signal) {
-            (Axis::MuStatic, _) => motor.mu_static = number,
-            (Axis::MuDynamic, _) => motor.mu_dynamic = number,
-            (Axis::ContactForce, _) => motor.contact_force = number,
-            (Axis::SliderMass, _) => motor.slider_mass = number,
-            (Axis::ExtraAcceleration, _) => motor.extra_acceleration = number,
+            (SweepAxis::MuStatic, _) => motor.mu_static = number,
+            (SweepAxis::MuDynamic, _) => motor.mu_dynamic = number,
+            (SweepAxis::ContactForce, _) => motor.contact_force = number,
+            (SweepAxis::SliderMass, _) => motor.slider_mass = number,
+            (SweepAxis::ExtraAcceleration, _) => motor.extra_acceleration = number,
             (
-                Axis::Stroke,
+                SweepAxis::Stroke,
                 SignalSpec::Harmonics {
                     scale_to_stroke, ..
                 },
             ) => *scale_to_stroke = Some(number),
-            (Axis::Frequency, SignalSpec::Harmonics { frequency, .. }) => *frequency = number,
-            (Axis::Harmonics, SignalSpec::Fourier { harmonics, .. }) => {
+            (SweepAxis::Frequency, SignalSpec::Harmonics { frequency, .. }) => *frequency = number,
+            (SweepAxis::Harmonics, SignalSpec::Fourier { harmonics, .. }) => {
                 if let AxisValue::Integer(n) = value {
                     *harmonics = usize::try_from(n).unwrap_or(0);
                 }
             }
-            (Axis::Sigma, SignalSpec::Fourier { sigma, .. }) => {
+            (SweepAxis::Sigma, SignalSpec::Fourier { sigma, .. }) => {
                 if let AxisValue::Bool(b) = value {
                     *sigma = b;
                 }
             }
             (axis, SignalSpec::Fourier { shape, .. } | SignalSpec::Ideal(shape)) => match axis {
-                Axis::SqrtKappa => shape.drive = Drive::Kappa(number * number),
-                Axis::Kappa => shape.drive = Drive::Kappa(number),
-                Axis::Frequency => shape.drive = Drive::Frequency(number),
-                Axis::FMax => shape.drive = Drive::FMax(number),
-                Axis::Stroke => shape.stroke = number,
-                Axis::Duty => shape.duty = number,
+                SweepAxis::SqrtKappa => shape.drive = Drive::Kappa(number * number),
+                SweepAxis::Kappa => shape.drive = Drive::Kappa(number),
+                SweepAxis::Frequency => shape.drive = Drive::Frequency(number),
+                SweepAxis::FMax => shape.drive = Drive::FMax(number),
+                SweepAxis::Stroke => shape.stroke = number,
+                SweepAxis::Duty => shape.duty = number,
                 _ => {}
             },
             _ => {}
@@ -230,13 +233,13 @@ pub(super) fn set_level(scene: &mut Scene, level: f64) {
     }
 }
 
-impl fmt::Display for Axis {
+impl fmt::Display for SweepAxis {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
 }
 
-impl FromStr for Axis {
+impl FromStr for SweepAxis {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {

@@ -3,7 +3,7 @@
 //! worker threads and appended in case order as they finish, and a stop
 //! on SIGINT/SIGTERM that leaves every finished row on disk.
 
-use super::grid::{Axis, AxisValue, Case, Format, Shard, Sweep};
+use super::grid::{AxisValue, Case, Shard, Sweep, SweepAxis, SweepFormat};
 use super::layout::{self, Layout, Parsed};
 use super::table::{self, Cell, Column, Meta};
 use crate::error::{Error, SweepError};
@@ -26,7 +26,7 @@ pub struct CaseResult {
     /// The case's index.
     pub index: usize,
     /// The case's axis values.
-    pub values: Vec<(Axis, AxisValue)>,
+    pub values: Vec<(SweepAxis, AxisValue)>,
     /// The run.
     pub report: RunReport,
 }
@@ -97,14 +97,14 @@ fn progress_bar(len: usize, progress: bool) -> ProgressBar {
 
 /// How [`execute`] runs a sweep.
 #[derive(Debug, Clone)]
-pub struct Options {
+pub struct SweepOptions {
     /// Output file; valid rows in it are kept and not rerun.
     pub output: PathBuf,
     /// Run only this shard; `None`: every case.
     pub shard: Option<Shard>,
     /// Output format; `None`: the one the output's extension names
-    /// ([`Format::from_path`]), else the sweep file's.
-    pub format: Option<Format>,
+    /// ([`SweepFormat::from_path`]), else the sweep file's.
+    pub format: Option<SweepFormat>,
     /// Write the `wall_time_s` column (the only one that differs between
     /// runs of the same sweep).
     pub timing: bool,
@@ -115,7 +115,7 @@ pub struct Options {
     pub jobs: Option<usize>,
 }
 
-impl Options {
+impl SweepOptions {
     /// Timing on, progress on, the format from the file name or the sweep,
     /// one worker per available CPU.
     pub fn new(output: impl Into<PathBuf>) -> Self {
@@ -246,12 +246,12 @@ fn same_file(_file: &File, path: &Path) -> bool {
 /// they finish; at the end the rows are sorted by case. On SIGINT/SIGTERM
 /// (with `crate::interrupt::install`) it stops taking new cases, writes
 /// those in flight and returns with [`Summary::interrupted`] set.
-pub fn execute(sweep: &Sweep, options: &Options) -> Result<Summary, SweepError> {
+pub fn execute(sweep: &Sweep, options: &SweepOptions) -> Result<Summary, SweepError> {
     let path = &options.output;
     let layout = Layout {
         format: options
             .format
-            .or_else(|| Format::from_path(path))
+            .or_else(|| SweepFormat::from_path(path))
             .unwrap_or(sweep.format()),
         meta: Meta::of(sweep),
         columns: table::column_kinds(sweep, options.timing),

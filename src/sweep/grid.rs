@@ -3,7 +3,7 @@
 //! holds only its axes whatever the number of cases.
 
 use super::axis::set_level;
-pub use super::axis::{Axis, AxisKey, AxisValue};
+pub use super::axis::{AxisKey, AxisValue, SweepAxis};
 use crate::error::{ParamError, SweepError};
 use crate::indicator::Indicator;
 use crate::scene::Override;
@@ -22,7 +22,7 @@ pub const MAX_CASES: usize = 10_000_000;
 /// Output format of a sweep.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
 #[serde(rename_all = "lowercase")]
-pub enum Format {
+pub enum SweepFormat {
     /// Comma-separated values with a header line.
     #[default]
     Csv,
@@ -30,12 +30,12 @@ pub enum Format {
     Jsonl,
 }
 
-impl Format {
+impl SweepFormat {
     /// The format a file name asks for: `.csv` or `.jsonl`, else `None`.
-    pub fn from_path(path: &Path) -> Option<Format> {
+    pub fn from_path(path: &Path) -> Option<SweepFormat> {
         match path.extension()?.to_str()? {
-            "csv" => Some(Format::Csv),
-            "jsonl" => Some(Format::Jsonl),
+            "csv" => Some(SweepFormat::Csv),
+            "jsonl" => Some(SweepFormat::Jsonl),
             _ => None,
         }
     }
@@ -43,8 +43,8 @@ impl Format {
     /// The usual file extension.
     pub fn extension(self) -> &'static str {
         match self {
-            Format::Csv => "csv",
-            Format::Jsonl => "jsonl",
+            SweepFormat::Csv => "csv",
+            SweepFormat::Jsonl => "jsonl",
         }
     }
 }
@@ -87,35 +87,35 @@ pub struct AxesTable {
 
 impl AxesTable {
     /// The given axes in case order.
-    fn axes(&self) -> Vec<(Axis, Vec<AxisValue>)> {
+    fn axes(&self) -> Vec<(SweepAxis, Vec<AxisValue>)> {
         let numbers = |v: &Option<Vec<f64>>| {
             v.as_ref()
                 .map(|v| v.iter().map(|x| AxisValue::Number(*x)).collect::<Vec<_>>())
         };
-        Axis::ALL
+        SweepAxis::ALL
             .into_iter()
             .filter_map(|axis| {
                 let values = match axis {
-                    Axis::Level => numbers(&self.level),
-                    Axis::SqrtKappa => numbers(&self.sqrt_kappa),
-                    Axis::Kappa => numbers(&self.kappa),
-                    Axis::Frequency => numbers(&self.frequency),
-                    Axis::FMax => numbers(&self.f_max),
-                    Axis::Harmonics => self
+                    SweepAxis::Level => numbers(&self.level),
+                    SweepAxis::SqrtKappa => numbers(&self.sqrt_kappa),
+                    SweepAxis::Kappa => numbers(&self.kappa),
+                    SweepAxis::Frequency => numbers(&self.frequency),
+                    SweepAxis::FMax => numbers(&self.f_max),
+                    SweepAxis::Harmonics => self
                         .harmonics
                         .as_ref()
                         .map(|v| v.iter().map(|n| AxisValue::Integer(*n)).collect()),
-                    Axis::Sigma => self
+                    SweepAxis::Sigma => self
                         .sigma
                         .as_ref()
                         .map(|v| v.iter().map(|b| AxisValue::Bool(*b)).collect()),
-                    Axis::Stroke => numbers(&self.stroke),
-                    Axis::Duty => numbers(&self.duty),
-                    Axis::MuStatic => numbers(&self.mu_static),
-                    Axis::MuDynamic => numbers(&self.mu_dynamic),
-                    Axis::ContactForce => numbers(&self.contact_force),
-                    Axis::SliderMass => numbers(&self.slider_mass),
-                    Axis::ExtraAcceleration => numbers(&self.extra_acceleration),
+                    SweepAxis::Stroke => numbers(&self.stroke),
+                    SweepAxis::Duty => numbers(&self.duty),
+                    SweepAxis::MuStatic => numbers(&self.mu_static),
+                    SweepAxis::MuDynamic => numbers(&self.mu_dynamic),
+                    SweepAxis::ContactForce => numbers(&self.contact_force),
+                    SweepAxis::SliderMass => numbers(&self.slider_mass),
+                    SweepAxis::ExtraAcceleration => numbers(&self.extra_acceleration),
                 };
                 values.map(|v| (axis, v))
             })
@@ -132,7 +132,7 @@ pub struct SweepOutputsTable {
     pub indicators: Option<Vec<String>>,
     /// `csv` (default) or `jsonl`.
     #[serde(default)]
-    pub format: Option<Format>,
+    pub format: Option<SweepFormat>,
 }
 
 /// One case of a sweep: its index, its axis values and the scene it runs.
@@ -141,14 +141,14 @@ pub struct Case {
     /// Position in the grid, `0..N` (see the module docs).
     pub index: usize,
     /// The value of every axis, in axis order.
-    pub values: Vec<(Axis, AxisValue)>,
+    pub values: Vec<(SweepAxis, AxisValue)>,
     /// The validated scene.
     pub scene: Scene,
 }
 
 impl Case {
     /// The value of `axis`, if the sweep varies it.
-    pub fn value(&self, axis: Axis) -> Option<AxisValue> {
+    pub fn value(&self, axis: SweepAxis) -> Option<AxisValue> {
         self.values
             .iter()
             .find_map(|(a, v)| (*a == axis).then_some(*v))
@@ -170,8 +170,8 @@ pub struct Sweep {
     origin: String,
     base: Scene,
     base_path: Option<PathBuf>,
-    axes: Vec<(Axis, Vec<AxisValue>)>,
-    format: Format,
+    axes: Vec<(SweepAxis, Vec<AxisValue>)>,
+    format: SweepFormat,
     len: usize,
 }
 
@@ -261,7 +261,11 @@ impl Sweep {
             .filter(|a| {
                 matches!(
                     a,
-                    Axis::Level | Axis::SqrtKappa | Axis::Kappa | Axis::Frequency | Axis::FMax
+                    SweepAxis::Level
+                        | SweepAxis::SqrtKappa
+                        | SweepAxis::Kappa
+                        | SweepAxis::Frequency
+                        | SweepAxis::FMax
                 )
             })
             .collect();
@@ -370,12 +374,12 @@ impl Sweep {
     }
 
     /// The axes and their values, in case order.
-    pub fn axes(&self) -> &[(Axis, Vec<AxisValue>)] {
+    pub fn axes(&self) -> &[(SweepAxis, Vec<AxisValue>)] {
         &self.axes
     }
 
     /// The output format the sweep file asks for.
-    pub fn format(&self) -> Format {
+    pub fn format(&self) -> SweepFormat {
         self.format
     }
 
@@ -406,9 +410,9 @@ impl Sweep {
     }
 }
 
-fn make_case(base: &Scene, axes: &[(Axis, Vec<AxisValue>)], index: usize) -> Case {
+fn make_case(base: &Scene, axes: &[(SweepAxis, Vec<AxisValue>)], index: usize) -> Case {
     let mut rest = index;
-    let mut values = vec![(Axis::Level, AxisValue::Bool(false)); axes.len()];
+    let mut values = vec![(SweepAxis::Level, AxisValue::Bool(false)); axes.len()];
     for (slot, (axis, list)) in values.iter_mut().zip(axes).rev() {
         *slot = (*axis, list[rest % list.len()]);
         rest /= list.len();
@@ -419,7 +423,7 @@ fn make_case(base: &Scene, axes: &[(Axis, Vec<AxisValue>)], index: usize) -> Cas
     }
     // After `harmonics`, which `level` divides by.
     for (axis, value) in &values {
-        if let (Axis::Level, Some(level)) = (axis, value.as_f64()) {
+        if let (SweepAxis::Level, Some(level)) = (axis, value.as_f64()) {
             set_level(&mut scene, level);
         }
     }

@@ -2,7 +2,7 @@
 //! a row, and reading a file back strictly, every cell one a sweep could
 //! have written, for resuming and merging.
 
-use super::grid::Format;
+use super::grid::SweepFormat;
 use super::table::{Cell, Column, Meta, column_difference};
 use crate::csv_text::line as csv_line;
 use crate::error::SweepError;
@@ -11,7 +11,7 @@ use std::path::Path;
 /// The layout of an output file: format, header and columns.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Layout {
-    pub format: Format,
+    pub format: SweepFormat,
     pub meta: Meta,
     pub columns: Vec<Column>,
 }
@@ -20,8 +20,8 @@ impl Layout {
     /// A row as one line, without the line end.
     pub(super) fn render(&self, cells: &[Cell]) -> String {
         match self.format {
-            Format::Csv => csv_line(&cells.iter().map(Cell::csv).collect::<Vec<_>>()),
-            Format::Jsonl => {
+            SweepFormat::Csv => csv_line(&cells.iter().map(Cell::csv).collect::<Vec<_>>()),
+            SweepFormat::Jsonl => {
                 let fields: Vec<String> = self
                     .columns
                     .iter()
@@ -37,7 +37,7 @@ impl Layout {
     pub(super) fn head(&self) -> String {
         let mut out = self.meta.line(self.format);
         out.push('\n');
-        if self.format == Format::Csv {
+        if self.format == SweepFormat::Csv {
             let names: Vec<&str> = self.columns.iter().map(|c| c.name()).collect();
             out.push_str(&csv_line(&names));
             out.push('\n');
@@ -66,7 +66,7 @@ pub(super) struct Row {
 #[derive(Debug)]
 pub(super) struct Parsed {
     /// The format; `None` for an empty file.
-    pub format: Option<Format>,
+    pub format: Option<SweepFormat>,
     /// The header line, if the file has one.
     pub meta: Option<Meta>,
     /// The columns; `None` for a file without a column header or a row.
@@ -103,7 +103,7 @@ pub(super) fn parse(path: &Path, text: &str) -> Result<Parsed, SweepError> {
         return Ok(parsed);
     };
     if first.starts_with('{') {
-        parsed.format = Some(Format::Jsonl);
+        parsed.format = Some(SweepFormat::Jsonl);
         for (number, line) in lines {
             let value: serde_json::Value =
                 serde_json::from_str(line).map_err(|e| bad(number, format!("not JSON: {e}")))?;
@@ -153,7 +153,7 @@ pub(super) fn parse(path: &Path, text: &str) -> Result<Parsed, SweepError> {
         }
         return Ok(parsed);
     }
-    parsed.format = Some(Format::Csv);
+    parsed.format = Some(SweepFormat::Csv);
     let mut offset = 0;
     if let Some(meta) = Meta::parse_csv(first) {
         parsed.meta = Some(meta);

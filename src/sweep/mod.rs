@@ -86,7 +86,7 @@
 //!   row of a failed case); `period` (s), `startup_periods`, `periods_simulated`, `events_total`
 //!   (events of the start-up), `last_v_p` (m/s, for `run-away` and
 //!   `not_converged`), `wall_time_s`, `setup_time_s` and
-//!   `simulation_time_s` (left out with [`Options::timing`] `= false`, so
+//!   `simulation_time_s` (left out with [`SweepOptions::timing`] `= false`, so
 //!   that the same sweep gives the same bytes), `error_v_inf` (estimated
 //!   absolute error of `v_inf`), and `failure` (empty, or why the case's
 //!   run failed; the row then holds nothing else but the case's columns).
@@ -125,7 +125,7 @@
 //! (a last line without its end is dropped), runs the rest, and at the end
 //! rewrites the file sorted by case if the kept and new rows interleave:
 //! the result equals an uninterrupted run row for row, and byte for byte
-//! with [`Options::timing`] `= false`. Rewrites go through a temporary file
+//! with [`SweepOptions::timing`] `= false`. Rewrites go through a temporary file
 //! renamed over the output, never leaving half a file.
 //!
 //! The grid is never held in memory: a case is made from its index
@@ -155,14 +155,14 @@
 //!
 //! ```
 //! use stickslip::Scene;
-//! use stickslip::sweep::{self, Axis, Sweep};
+//! use stickslip::sweep::{self, SweepAxis, Sweep};
 //! use std::path::Path;
 //!
 //! let text = "[axes]\nlevel = [6]\nharmonics = [2, 3]\n[outputs]\nindicators = [\"v_inf\"]\n";
 //! let sweep = Sweep::from_toml_str(text, "<string>", Path::new("."))?;
 //! let cases = sweep.cases();
 //! assert_eq!(cases.len(), 2);
-//! assert_eq!(cases[1].value(Axis::Harmonics).and_then(|v| v.as_f64()), Some(3.0));
+//! assert_eq!(cases[1].value(SweepAxis::Harmonics).and_then(|v| v.as_f64()), Some(3.0));
 //! // level 6 at n = 3: sqrt(kappa) = 2
 //! assert_eq!(cases[1].scene.signal, Scene::from_toml_str(
 //!     "[signal]\nkind = \"fourier\"\nstroke = 25e-6\nsqrt_kappa = 2\nharmonics = 3\nsigma = true",
@@ -189,10 +189,10 @@ mod layout;
 mod merge;
 mod table;
 
-pub use execute::{CaseResult, Options, Summary, execute, run_case, run_cases};
+pub use execute::{CaseResult, Summary, SweepOptions, execute, run_case, run_cases};
 pub use grid::{
-    AxesTable, Axis, AxisKey, AxisValue, Case, Format, MAX_CASES, Shard, Sweep, SweepFile,
-    SweepOutputsTable, load, load_with,
+    AxesTable, AxisKey, AxisValue, Case, MAX_CASES, Shard, Sweep, SweepAxis, SweepFile,
+    SweepFormat, SweepOutputsTable, load, load_with,
 };
 pub use merge::{MISSING_LISTED, MergeSummary, merge};
 

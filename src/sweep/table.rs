@@ -2,7 +2,7 @@
 //! reading a file back strictly (every cell must be one a sweep could have
 //! written), for resuming and merging.
 
-use super::grid::{Axis, AxisKey, AxisValue, Case, Format, MAX_CASES, Sweep};
+use super::grid::{AxisKey, AxisValue, Case, MAX_CASES, Sweep, SweepAxis, SweepFormat};
 use crate::error::Error;
 use crate::indicator::Indicator;
 use crate::motor::Motor;
@@ -29,9 +29,9 @@ impl Meta {
         }
     }
 
-    pub(super) fn line(&self, format: Format) -> String {
+    pub(super) fn line(&self, format: SweepFormat) -> String {
         match format {
-            Format::Csv => {
+            SweepFormat::Csv => {
                 let mut line = format!(
                     "# stickslip_version = {}, base_scene_hash = {}",
                     self.version, self.base_scene_hash
@@ -41,7 +41,7 @@ impl Meta {
                 }
                 line
             }
-            Format::Jsonl => {
+            SweepFormat::Jsonl => {
                 let mut map = serde_json::Map::new();
                 map.insert("stickslip_version".into(), self.version.clone().into());
                 map.insert(
@@ -190,7 +190,7 @@ impl Cell {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Column {
     Case,
-    Axis(Axis),
+    Axis(SweepAxis),
     SceneHash,
     Indicator(Indicator),
     StictionSteady,
@@ -254,7 +254,7 @@ impl Column {
         FIXED
             .into_iter()
             .chain([Column::Failure])
-            .chain(Axis::ALL.map(Column::Axis))
+            .chain(SweepAxis::ALL.map(Column::Axis))
             .chain(Indicator::ALL.map(Column::Indicator))
             .find(|c| c.name() == name)
     }
@@ -265,7 +265,7 @@ impl Column {
         let indicator = |i: Indicator| Indicator::ALL.iter().position(|x| *x == i).unwrap_or(0);
         match self {
             Column::Case => 0,
-            Column::Axis(a) => 1 + Axis::ALL.iter().position(|x| *x == a).unwrap_or(0),
+            Column::Axis(a) => 1 + SweepAxis::ALL.iter().position(|x| *x == a).unwrap_or(0),
             Column::SceneHash => 20,
             Column::Regime => 21,
             Column::Indicator(i) => 30 + 2 * indicator(i),
@@ -312,7 +312,7 @@ impl Column {
         };
         let report = outcome.report();
         let unsettled = outcome.unsettled();
-        let (setup, simulation, wall) = outcome.times();
+        let times = outcome.times();
         match self {
             Column::Regime => Cell::Text(outcome.regime().to_owned()),
             Column::Indicator(indicator) => Cell::number(outcome.value(indicator)),
@@ -333,9 +333,9 @@ impl Column {
                 report.map_or(Cell::Empty, |r| Cell::Unsigned(r.events().total()))
             }
             Column::LastVp => Cell::number(unsettled.and_then(|u| u.last_v_p)),
-            Column::WallTime => Cell::number(Some(wall.as_secs_f64())),
-            Column::SetupTime => Cell::number(Some(setup.as_secs_f64())),
-            Column::SimulationTime => Cell::number(Some(simulation.as_secs_f64())),
+            Column::WallTime => Cell::number(Some(times.wall.as_secs_f64())),
+            Column::SetupTime => Cell::number(Some(times.setup.as_secs_f64())),
+            Column::SimulationTime => Cell::number(Some(times.simulation.as_secs_f64())),
             Column::ErrorVInf => Cell::number(report.and_then(|r| r.error.v_inf)),
             Column::Case | Column::Axis(_) | Column::SceneHash | Column::F0 | Column::Failure => {
                 unreachable!("handled above")
@@ -357,8 +357,8 @@ impl Column {
             Column::Regime => {
                 return format!("one of {} or nothing", Outcome::REGIMES.join(", "));
             }
-            Column::Axis(Axis::Harmonics) => "an integer",
-            Column::Axis(Axis::Sigma) => "true or false",
+            Column::Axis(SweepAxis::Harmonics) => "an integer",
+            Column::Axis(SweepAxis::Sigma) => "true or false",
             Column::Axis(_) => "a number",
             _ => "a finite number or nothing",
         }
@@ -382,9 +382,9 @@ impl Column {
             (Column::Regime, Cell::Text(name)) => Outcome::REGIMES.contains(&name.as_str()),
             (Column::Regime, Cell::Empty) => true,
             (Column::Axis(axis), cell) => match (axis, cell) {
-                (Axis::Harmonics, Cell::Integer(n)) => axis.accepts(AxisValue::Integer(*n)),
-                (Axis::Sigma, Cell::Bool(_)) => true,
-                (Axis::Harmonics | Axis::Sigma, _) => false,
+                (SweepAxis::Harmonics, Cell::Integer(n)) => axis.accepts(AxisValue::Integer(*n)),
+                (SweepAxis::Sigma, Cell::Bool(_)) => true,
+                (SweepAxis::Harmonics | SweepAxis::Sigma, _) => false,
                 (_, Cell::Number(x)) => axis.accepts(AxisValue::Number(*x)),
                 _ => false,
             },
@@ -435,10 +435,10 @@ impl Column {
                 | Column::EventsTotal => {
                     text.parse().map_or(Cell::Text(text.into()), Cell::Unsigned)
                 }
-                Column::Axis(Axis::Harmonics) => {
+                Column::Axis(SweepAxis::Harmonics) => {
                     text.parse().map_or(Cell::Text(text.into()), Cell::Integer)
                 }
-                Column::Axis(Axis::Sigma) => {
+                Column::Axis(SweepAxis::Sigma) => {
                     text.parse().map_or(Cell::Text(text.into()), Cell::Bool)
                 }
                 Column::SceneHash | Column::Failure | Column::Regime => Cell::Text(text.into()),
@@ -462,7 +462,7 @@ impl Column {
                 | Column::EventsTotal,
                 Value::Number(n),
             ) => n.as_u64().map_or(Cell::Empty, Cell::Unsigned),
-            (Column::Axis(Axis::Harmonics), Value::Number(n)) => {
+            (Column::Axis(SweepAxis::Harmonics), Value::Number(n)) => {
                 n.as_i64().map_or(Cell::Empty, Cell::Integer)
             }
             (_, Value::Number(n)) => n.as_f64().map_or(Cell::Empty, Cell::Number),
