@@ -202,12 +202,21 @@ pub fn exact_tables(
     scene: &crate::scene::Scene,
     times: &[f64],
     periods_series: bool,
-) -> Result<(String, Option<String>), String> {
+) -> Result<ExactTables, String> {
     let (trajectory, periods) = exact_series(scene, times, periods_series)?;
-    Ok((
-        trajectory_table(&trajectory.states, false),
-        periods_series.then(|| periods_table(&periods, false)),
-    ))
+    Ok(ExactTables {
+        trajectory: trajectory_table(&trajectory.states, false),
+        periods: periods_series.then(|| periods_table(&periods, false)),
+    })
+}
+
+/// The CSV tables of [`exact_tables`].
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ExactTables {
+    /// The trajectory at the times asked for (`run --trajectory`).
+    pub trajectory: String,
+    /// The per-period series, when asked for (`run --periods-series`).
+    pub periods: Option<String>,
 }
 
 /// The exact states at `times` and the per-period records asked for

@@ -297,7 +297,9 @@ fn map_derivative_is_the_schemes_own() {
     for (spec, expected) in [(fourier(36.0, 2), 1.0), (fourier(0.36, 5), 0.0)] {
         let signal = Signal::build(&spec, &motor).expect("valid signal");
         let mut engine = reference(&signal, &motor, 1000);
-        let (v, _, _, _) = stickslip::analysis::fixed_point(&mut engine, 0.0).expect("fixed point");
+        let v = stickslip::analysis::fixed_point(&mut engine, 0.0)
+            .expect("fixed point")
+            .velocity;
         let mut log = EventLog::default();
         let end = engine
             .run_period(
@@ -325,8 +327,12 @@ fn fixed_point_search_ends_by_bisection_at_5000_steps() {
     let motor = Motor::default();
     let signal = Signal::build(&fourier(36.0, 2), &motor).expect("valid signal");
     let mut engine = reference(&signal, &motor, 5000);
-    let (v, derivative, iterations, _) =
-        stickslip::analysis::fixed_point(&mut engine, 0.0).expect("fixed point");
+    let stickslip::analysis::FixedPoint {
+        velocity: v,
+        map_derivative: derivative,
+        iterations,
+        ..
+    } = stickslip::analysis::fixed_point(&mut engine, 0.0).expect("fixed point");
     assert!(iterations <= 80, "{iterations} iterations");
     assert_eq!(derivative, 1.0);
     let end = engine
@@ -342,8 +348,9 @@ fn fixed_point_search_ends_by_bisection_at_5000_steps() {
     assert_eq!(end.velocity, v, "a fixed point of the scheme's map");
     // Source: the event engine's boundary velocity of the periodic orbit.
     let mut exact = EventEngine::new(&signal, &motor, EventOptions::default());
-    let (v_exact, _, _, _) =
-        stickslip::analysis::fixed_point(&mut exact, 0.0).expect("fixed point");
+    let v_exact = stickslip::analysis::fixed_point(&mut exact, 0.0)
+        .expect("fixed point")
+        .velocity;
     assert!((v - v_exact).abs() < 1e-3 * v_exact, "{v} vs {v_exact}");
 }
 

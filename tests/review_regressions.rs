@@ -27,11 +27,13 @@ fn steady_period_reports_the_transition_at_its_start() {
 /// the slider sticks half of every period.
 #[test]
 fn regime_counts_stick_entered_through_a_jump() {
-    let r = stickslip::run(&scene_from(
+    let scene = scene_from(
         "[motor]\nslider_mass = 1.0\ncontact_force = 1.0\nmu_static = 1.0\nmu_dynamic = 0.5\n\
          extra_acceleration = -0.5\n[signal]\nkind = \"ideal\"\nstroke = 0.01\nkappa = 2.0\nduty = 0.5\n",
-    ), &stickslip::RunOptions::default()).and_then(stickslip::Outcome::into_report)
-    .unwrap();
+    );
+    let r = stickslip::run(&scene, &stickslip::RunOptions::default())
+        .and_then(stickslip::Outcome::into_report)
+        .unwrap();
     assert!(r.indicators.stiction_fraction > 0.0);
     assert_eq!(r.regime(), Regime::StickSlip);
 }

@@ -421,20 +421,20 @@ impl Run {
             .collect();
         check_times(&times)?;
         let scene = &self.scene;
-        let (table, _) = py
+        let tables = py
             .allow_threads(|| stickslip::export::exact_tables(scene, &times, false))
             .map_err(scene_error)?;
-        columns_of(py, &table)
+        columns_of(py, &tables.trajectory)
     }
 
     /// The per-period series of the start-up, as `run --periods-series`
     /// writes it: `[(column, kind, values)]` ([`columns_of`]).
     fn periods(&self, py: Python<'_>) -> PyResult<Columns> {
         let scene = &self.scene;
-        let (_, table) = py
+        let tables = py
             .allow_threads(|| stickslip::export::exact_tables(scene, &[], true))
             .map_err(scene_error)?;
-        columns_of(py, &table.unwrap_or_default())
+        columns_of(py, &tables.periods.unwrap_or_default())
     }
 
     /// The event log of the run (`[outputs] events = true`), as the JSON's

@@ -27,6 +27,31 @@ fn period_map<E: PeriodEngine>(engine: &mut E, v: f64) -> Result<(f64, f64), Sim
     Ok((end.velocity, end.map_derivative))
 }
 
+/// A fixed point of the period map as the search found it
+/// ([`fixed_point`], [`fixed_point_between`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixedPoint {
+    /// The slider velocity at the period boundary, `P(v) = v` (m/s).
+    pub velocity: f64,
+    /// The map's derivative there, `P'(v)`.
+    pub map_derivative: f64,
+    /// Iterations of the search (0: the guess was the fixed point).
+    pub iterations: u32,
+    /// The search's last step (m/s).
+    pub last_correction: f64,
+}
+
+impl FixedPoint {
+    fn new(velocity: f64, map_derivative: f64, iterations: u32, last_correction: f64) -> Self {
+        Self {
+            velocity,
+            map_derivative,
+            iterations,
+            last_correction,
+        }
+    }
+}
+
 /// Iteration limit of the fixed-point search.
 const MAX_FIXED_POINT_ITERATIONS: u32 = 200;
 
@@ -35,13 +60,13 @@ const MAX_FIXED_POINT_ITERATIONS: u32 = 200;
 pub fn fixed_point<E: PeriodEngine>(
     engine: &mut E,
     guess: f64,
-) -> Result<(f64, f64, u32, f64), SimulationError> {
+) -> Result<FixedPoint, SimulationError> {
     let (lo_r, hi_r) = engine.signal().velocity_range();
     let span = (hi_r - lo_r).max(f64::MIN_POSITIVE);
     let (p0, d0) = period_map(engine, guess)?;
     let g0 = p0 - guess;
     if g0 == 0.0 {
-        return Ok((guess, d0, 0, 0.0));
+        return Ok(FixedPoint::new(guess, d0, 0, 0.0));
     }
     // Bracket [lo, hi] with g(lo) > 0 >= g(hi) in the direction P moves
     // the guess. The rod's velocity range closes it: a slider faster than
@@ -75,12 +100,12 @@ pub fn fixed_point_between<E: PeriodEngine>(
     lo: f64,
     hi: f64,
     start: f64,
-) -> Result<(f64, f64, u32, f64), SimulationError> {
+) -> Result<FixedPoint, SimulationError> {
     let (lo_r, hi_r) = engine.signal().velocity_range();
     let span = (hi_r - lo_r).max(f64::MIN_POSITIVE);
     let (p, d) = period_map(engine, start)?;
     if p == start {
-        return Ok((start, d, 0, 0.0));
+        return Ok(FixedPoint::new(start, d, 0, 0.0));
     }
     bracketed(engine, (lo, hi), (start, p - start, d), span)
 }
@@ -92,7 +117,7 @@ fn bracketed<E: PeriodEngine>(
     (lo, hi): (f64, f64),
     (guess, g0, d0): (f64, f64, f64),
     span: f64,
-) -> Result<(f64, f64, u32, f64), SimulationError> {
+) -> Result<FixedPoint, SimulationError> {
     let (mut lo, mut hi) = (lo, hi);
     let tiny = 4.0 * f64::EPSILON * span;
     let (mut v, mut g, mut dp) = (guess, g0, d0);
@@ -110,7 +135,7 @@ fn bracketed<E: PeriodEngine>(
         g = p - v;
         dp = d;
         if g == 0.0 {
-            return Ok((v, dp, iteration, correction));
+            return Ok(FixedPoint::new(v, dp, iteration, correction));
         }
         if g > 0.0 {
             lo = v;
@@ -118,8 +143,13 @@ fn bracketed<E: PeriodEngine>(
             hi = v;
         }
         if correction <= tiny.max(4.0 * f64::EPSILON * v.abs()) || hi - lo <= tiny {
-            return Ok((v, dp, iteration, correction));
+            return Ok(FixedPoint::new(v, dp, iteration, correction));
         }
     }
-    Ok((v, dp, MAX_FIXED_POINT_ITERATIONS, correction))
+    Ok(FixedPoint::new(
+        v,
+        dp,
+        MAX_FIXED_POINT_ITERATIONS,
+        correction,
+    ))
 }

@@ -2,7 +2,7 @@
 //! the fixed point of the period map, simulated for one period with the
 //! statistics observer attached, and its indicators (16), (18), (19).
 
-use super::fixed_point::fixed_point;
+use super::fixed_point::{FixedPoint, fixed_point};
 use super::stats::{PeriodStats, StatsObserver, StatsWanted};
 use crate::engine::Observer;
 use crate::engine::{PeriodEngine, PeriodStart};
@@ -42,7 +42,12 @@ pub fn steady_state<E: PeriodEngine, O: Observer>(
     wanted: StatsWanted,
     observer: &mut O,
 ) -> Result<SteadyState, SimulationError> {
-    let (v_star, map_derivative, iterations, last_correction) = fixed_point(engine, guess)?;
+    let FixedPoint {
+        velocity: v_star,
+        map_derivative,
+        iterations,
+        last_correction,
+    } = fixed_point(engine, guess)?;
     steady_state_at(
         engine,
         PeriodStart {

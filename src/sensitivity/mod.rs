@@ -445,7 +445,7 @@ pub fn from_rest(signal: &Signal, motor: &Motor) -> Option<f64> {
     let seed = transient.final_velocity;
     let reach = transient.remaining.unwrap_or(0.0) + transient.v_inf_error.unwrap_or(0.0);
     let v_star = match analysis::fixed_point(&mut engine, seed) {
-        Ok((v, ..)) if (v - seed).abs() <= reach => v,
+        Ok(p) if (p.velocity - seed).abs() <= reach => p.velocity,
         _ => seed,
     };
     let before = engine

@@ -137,7 +137,12 @@ pub(super) fn bracketed_v_inf<E: PeriodEngine>(
             let before = engine.counters().periods;
             let next = analysis::fixed_point(engine, v_star + s * r).ok();
             spent += (engine.counters().periods - before) as u32;
-            let Some((v_2, d, iterations, correction)) = next.filter(|n| (n.0 - v_star) * s > r)
+            let Some(analysis::FixedPoint {
+                velocity: v_2,
+                map_derivative: d,
+                iterations,
+                last_correction: correction,
+            }) = next.filter(|n| (n.velocity - v_star) * s > r)
             else {
                 break;
             };
@@ -245,7 +250,12 @@ fn steady_between<E: PeriodEngine, O: crate::engine::Observer>(
     wanted: StatsWanted,
     observer: &mut O,
 ) -> Result<SteadyState, Error> {
-    let (v, d, iterations, correction) = analysis::fixed_point_between(engine, lo, hi, start)?;
+    let analysis::FixedPoint {
+        velocity: v,
+        map_derivative: d,
+        iterations,
+        last_correction: correction,
+    } = analysis::fixed_point_between(engine, lo, hi, start)?;
     Ok(analysis::steady_state_at(
         engine,
         PeriodStart {

@@ -451,15 +451,13 @@ fn orbit_steady<E: PeriodEngine>(
         )?);
     }
     Ok(match analysis::fixed_point(engine, seed) {
-        Ok((v, d, iterations, correction)) if (v - seed).abs() <= reach => {
-            analysis::steady_state_at(
-                engine,
-                start(v),
-                (Some(d), iterations, correction),
-                wanted,
-                trajectory,
-            )?
-        }
+        Ok(p) if (p.velocity - seed).abs() <= reach => analysis::steady_state_at(
+            engine,
+            start(p.velocity),
+            (Some(p.map_derivative), p.iterations, p.last_correction),
+            wanted,
+            trajectory,
+        )?,
         _ => analysis::steady_state_at(
             engine,
             start(seed),
