@@ -342,3 +342,101 @@ fn the_crate_root_names_only_what_its_docs_present() {
         "namespaces not in the data path: {missing:?}"
     );
 }
+
+/// The public functions of `code` that return a tuple (`-> (A, B)`, or one
+/// wrapped in `Option` or `Result`), with their names: a public result is
+/// a named type whose fields say what each value is. `pub(crate)` and
+/// `pub(super)` functions are not public. Signatures may span lines.
+fn tuple_returning_functions(code: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut rest = code;
+    while let Some(i) = rest.find("pub ") {
+        let starts_word = i == 0 || !rest[..i].ends_with(|c: char| c.is_alphanumeric() || c == '_');
+        rest = &rest[i + 4..];
+        let mut item = rest.trim_start();
+        for qualifier in ["const ", "async ", "unsafe ", "extern \"C\" "] {
+            item = item.strip_prefix(qualifier).unwrap_or(item).trim_start();
+        }
+        let Some(item) = item.strip_prefix("fn ").filter(|_| starts_word) else {
+            continue;
+        };
+        let name: String = item
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        // The signature: up to the body or `;` outside brackets.
+        let (mut depth, mut end, mut arrow) = (0i32, item.len(), None);
+        let bytes = item.as_bytes();
+        let mut k = 0;
+        while k < bytes.len() {
+            match bytes[k] {
+                b'-' if bytes.get(k + 1) == Some(&b'>') => {
+                    if depth == 0 && arrow.is_none() {
+                        arrow = Some(k + 2);
+                    }
+                    k += 1;
+                }
+                b'(' | b'<' | b'[' => depth += 1,
+                b')' | b'>' | b']' => depth -= 1,
+                b'{' | b';' if depth == 0 => {
+                    end = k;
+                    break;
+                }
+                _ => {}
+            }
+            k += 1;
+        }
+        let Some(arrow) = arrow.filter(|a| *a <= end) else {
+            continue;
+        };
+        let result = item[arrow..end].split(" where").next().unwrap_or("").trim();
+        let inner = ["Option<", "Result<"]
+            .iter()
+            .find_map(|w| result.strip_prefix(w))
+            .unwrap_or(result)
+            .trim_start();
+        let unit = inner
+            .strip_prefix('(')
+            .is_some_and(|r| r.trim_start().starts_with(')'));
+        if inner.starts_with('(') && !unit {
+            out.push(name);
+        }
+    }
+    out
+}
+
+#[test]
+fn no_public_function_returns_a_tuple() {
+    let mut files = Vec::new();
+    rust_files(&src(), &mut files);
+    let mut found = Vec::new();
+    for path in files {
+        let text = code(&fs::read_to_string(&path).expect("source is readable"));
+        let rel = path.strip_prefix(src()).expect("inside src").display();
+        for name in tuple_returning_functions(&text) {
+            found.push(format!("{rel}: {name}"));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "public functions returning a tuple (return a named type):\n{}",
+        found.join("\n")
+    );
+}
+
+#[test]
+fn the_tuple_reader_sees_public_tuple_results_only() {
+    // Planted: `a` returns a pair, `b` a wrapped pair over several lines,
+    // `f` a pair under `const`; `c` is crate-private, `d` returns unit in a
+    // `Result`, `e` a named type after a closure argument with an arrow,
+    // `g` is not a function of its own (`republish`), `h` has no result.
+    let code = "pub fn a(x: f64) -> (f64, f64) { (x, x) }\n\
+                impl T {\n    pub fn b<F>(\n        &self,\n        f: F,\n    ) -> Option<(Vec<f64>, u32)>\n    where\n        F: Fn(f64) -> f64,\n    {\n    }\n}\n\
+                pub(crate) fn c() -> (u8, u8) {}\n\
+                pub fn d() -> Result<(), E> {}\n\
+                pub fn e(f: impl Fn(f64) -> (f64, f64)) -> Named {}\n\
+                pub const fn f() -> (u8, u8) {}\n\
+                fn republish_g() -> (u8, u8) {}\n\
+                pub fn h(x: (f64, f64)) {}\n";
+    assert_eq!(tuple_returning_functions(code), ["a", "b", "f"]);
+}

@@ -272,8 +272,8 @@ fn the_load_enters_as_minus_f_over_m() {
     };
     let motor = Motor::new(sc.motor).unwrap();
     let (a_r, a_d) = (4.0 * motor.a_0(), motor.a_d());
-    let (_, t) = match &sc.signal {
-        SignalSpec::Ideal(shape) => shape.times(&motor),
+    let t = match &sc.signal {
+        SignalSpec::Ideal(shape) => shape.times(&motor).period,
         _ => unreachable!(),
     };
     let closed = |g: f64| {

@@ -101,9 +101,10 @@ fn single_harmonic_gives_no_net_motion() {
     for (kappa, sigma) in [(1.0, false), (36.0, true), (0.3, false), (100.0, false)] {
         let scene = scene_with(fourier(25e-6, kappa, 1, sigma));
         let r = run(&scene);
-        let (lo, hi) = Signal::build(&scene.signal, &paper_motor())
+        let range = Signal::build(&scene.signal, &paper_motor())
             .unwrap()
             .velocity_range();
+        let (lo, hi) = (range.min, range.max);
         assert!(
             r.indicators.v_inf.abs() <= 1e-12 * (hi - lo),
             "v_inf = {:e} at kappa {kappa}",

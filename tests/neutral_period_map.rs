@@ -108,7 +108,7 @@ fn the_fixed_point_used_is_the_one_the_motion_from_rest_reaches() {
     };
     let motor = Motor::new(scene.motor).unwrap();
     let signal = Signal::build(&scene.signal, &motor).unwrap();
-    let a = signal.velocity_range().1 / 5.0;
+    let a = signal.velocity_range().max / 5.0;
     let engine = || ThreeFixedPoints {
         close: false,
         signal: signal.clone(),

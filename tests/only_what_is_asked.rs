@@ -114,7 +114,7 @@ fn v_inf_only_run_of_a_three_fixed_point_map_takes_the_nearest() {
     };
     let motor = Motor::new(scene.motor).unwrap();
     let signal = Signal::build(&scene.signal, &motor).unwrap();
-    let a = signal.velocity_range().1 / 5.0;
+    let a = signal.velocity_range().max / 5.0;
     let engine = ThreeFixedPoints {
         signal: signal.clone(),
         a,
@@ -155,7 +155,7 @@ fn a_pair_of_fixed_points_close_to_the_found_one_is_seen() {
         scene.outputs.indicators = indicators.clone();
         let motor = Motor::new(scene.motor).unwrap();
         let signal = Signal::build(&scene.signal, &motor).unwrap();
-        let a = signal.velocity_range().1 / 5.0;
+        let a = signal.velocity_range().max / 5.0;
         let engine = ThreeFixedPoints {
             signal: signal.clone(),
             a,

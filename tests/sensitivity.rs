@@ -24,7 +24,8 @@ use stickslip::{SignalSpec, signal::Drive, signal::IdealShape};
 
 /// The scene with `parameter` set to `value`.
 fn with(scene: &Scene, parameter: Parameter, value: f64) -> Scene {
-    let (signal, motor) = parameter.apply(&scene.signal, &scene.motor, value);
+    let varied = parameter.apply(&scene.signal, &scene.motor, value);
+    let (signal, motor) = (varied.signal, varied.motor);
     Scene {
         signal,
         motor,

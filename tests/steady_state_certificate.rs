@@ -207,7 +207,7 @@ fn a_slider_without_sliding_friction_is_caught_where_the_motion_from_rest_ends()
     // Caught at the rod's lowest velocity, released a little above it.
     let motor = stickslip::motor::Motor::new(scene.motor).unwrap();
     let signal = stickslip::signal::Signal::build(&scene.signal, &motor).unwrap();
-    let lowest = signal.velocity_range().0;
+    let lowest = signal.velocity_range().min;
     let v = r.indicators.v_inf;
     assert!(
         v > lowest && v - lowest < 1e-4,
@@ -256,5 +256,5 @@ fn signal_lowest(scene: &stickslip::Scene) -> f64 {
     stickslip::signal::Signal::build(&scene.signal, &motor)
         .unwrap()
         .velocity_range()
-        .0
+        .min
 }

@@ -189,7 +189,8 @@ fn check_planted(case: &Planted) -> Result<(), TestCaseError> {
         } else {
             cyc(x, expected[(j + 1) % m].0).min(cyc(x, expected[(j + m - 1) % m].0))
         };
-        let (px, dpx, d2px) = p.eval_with_two_derivatives(x);
+        let w = p.eval_with_two_derivatives(x);
+        let (px, dpx, d2px) = (w.value, w.first, w.second);
         if is_double {
             // the built polynomial must be tangent at rounding level and the
             // tangency not too flat (width of the band |p| ≤ η below 1e-6)
@@ -256,8 +257,8 @@ proptest! {
         let scale = coeff_sum(&p);
         let direct = direct_eval(&p, theta);
         prop_assert!((p.eval(theta) - direct).abs() <= 1e-12 * scale);
-        let (v, _) = p.eval_with_derivative(theta);
-        let (w, _, _) = p.eval_with_two_derivatives(theta);
+        let v = p.eval_with_derivative(theta).value;
+        let w = p.eval_with_two_derivatives(theta).value;
         prop_assert!((v - direct).abs() <= 1e-12 * scale);
         prop_assert!((w - direct).abs() <= 1e-12 * scale);
     }
@@ -279,8 +280,9 @@ proptest! {
         });
         let scale1 = coeff_sum(&d).max(f64::MIN_POSITIVE);
         let scale2 = coeff_sum(&dd).max(f64::MIN_POSITIVE);
-        let (_, dp) = p.eval_with_derivative(theta);
-        let (_, dp2, d2p) = p.eval_with_two_derivatives(theta);
+        let dp = p.eval_with_derivative(theta).derivative;
+        let two = p.eval_with_two_derivatives(theta);
+        let (dp2, d2p) = (two.first, two.second);
         prop_assert!((d.eval(theta) - direct_d).abs() <= 1e-12 * scale1);
         prop_assert!((dp - direct_d).abs() <= 1e-12 * scale1);
         prop_assert!((dp2 - direct_d).abs() <= 1e-12 * scale1);
@@ -303,7 +305,7 @@ proptest! {
             s + k * k * k * (a.abs() + b.abs())
         });
         let tol = h * h / 6.0 * third + 1e-15 * coeff_sum(&p) / h;
-        prop_assert!((p.eval_with_derivative(theta).1 - fd).abs() <= tol);
+        prop_assert!((p.eval_with_derivative(theta).derivative - fd).abs() <= tol);
     }
 
     #[test]
@@ -335,7 +337,8 @@ fn derivative_of_sin_is_cos() {
     );
     for i in 0..50 {
         let t = 0.13 * i as f64;
-        let (v, d) = p.eval_with_derivative(t);
+        let vd = p.eval_with_derivative(t);
+        let (v, d) = (vd.value, vd.derivative);
         assert_relative_eq!(v, 3.0 + 2.0 * t.sin() - (2.0 * t).cos(), epsilon = 1e-14);
         assert_relative_eq!(d, 2.0 * t.cos() + 2.0 * (2.0 * t).sin(), epsilon = 1e-14);
     }
@@ -718,7 +721,8 @@ fn random_poly(n: usize, state: &mut u64) -> TrigPoly {
 fn assert_at_rounding_level(p: &TrigPoly, roots: &[f64]) {
     let eta = p.eval_error_bound();
     for &t in roots {
-        let (v, d) = p.eval_with_derivative(t);
+        let vd = p.eval_with_derivative(t);
+        let (v, d) = (vd.value, vd.derivative);
         assert!(
             v.abs() <= eta + d.abs() * f64::EPSILON * t.max(1.0),
             "p({t}) = {v:e} > η = {eta:e}"
@@ -750,11 +754,12 @@ fn derivative_bound(p: &TrigPoly, l: i32) -> f64 {
 fn certified_count(p: &TrigPoly, lo: f64, hi: f64, bounds: &[f64; 4], depth: u32) -> Option<usize> {
     let [eta, m2, m3, eta1] = *bounds;
     let (m, h) = (0.5 * (lo + hi), 0.5 * (hi - lo));
-    let (v, d1) = p.eval_with_derivative(m);
+    let first = p.eval_with_derivative(m);
+    let (v, d1) = (first.value, first.derivative);
     if v.abs() - eta > (d1.abs() + eta1) * h + 0.5 * m2 * h * h {
         return Some(0);
     }
-    let d2 = p.eval_with_two_derivatives(m).2;
+    let d2 = p.eval_with_two_derivatives(m).second;
     if d1.abs() - eta1 > (d2.abs() + eta1 * 64.0) * h + 0.5 * m3 * h * h {
         let (a, b) = (p.eval(lo), p.eval(hi));
         if a.abs() <= eta || b.abs() <= eta {
@@ -796,7 +801,7 @@ fn ten_thousand_random_polynomials_lose_no_root() {
             let old = p.roots_by_eigenvalues();
             assert_eq!(found.len(), old.len(), "n = {n}: {found:?} vs {old:?}");
             for (x, y) in found.iter().zip(&old) {
-                let slope = p.eval_with_derivative(*x).1.abs();
+                let slope = p.eval_with_derivative(*x).derivative.abs();
                 let tol = 8.0 * p.eval_error_bound() / slope + 1e-14;
                 assert!(cyc(*x, *y) <= tol, "n = {n}: {x} vs {y}");
             }
@@ -854,17 +859,21 @@ fn shared_levels_give_the_same_roots_and_a_true_envelope() {
         for s in spread {
             let level = s * mass * rng.random_range(0.5..1.0);
             let shared = levels.roots_and_envelope(level);
-            assert_eq!(shared.0, p.roots_at_level(level), "n = {n}, level {level}");
-            let count = shared.1.len();
+            assert_eq!(
+                shared.roots,
+                p.roots_at_level(level),
+                "n = {n}, level {level}"
+            );
+            let count = shared.envelope.len();
             let eta = 4.0 * p.eval_error_bound() + 4.0 * f64::EPSILON * level.abs();
             for i in 0..500 {
                 let theta = TAU * (i as f64 + 0.5) / 500.0;
                 let slice = ((theta / TAU * count as f64) as usize).min(count - 1);
                 let value = (direct_eval(&p, theta) - level).abs();
                 assert!(
-                    value <= shared.1[slice] + eta,
+                    value <= shared.envelope[slice] + eta,
                     "n = {n}: |p - {level}| = {value} above its envelope {}",
-                    shared.1[slice]
+                    shared.envelope[slice]
                 );
             }
         }

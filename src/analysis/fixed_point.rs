@@ -61,7 +61,10 @@ pub fn fixed_point<E: PeriodEngine>(
     engine: &mut E,
     guess: f64,
 ) -> Result<FixedPoint, SimulationError> {
-    let (lo_r, hi_r) = engine.signal().velocity_range();
+    let crate::signal::VelocityRange {
+        min: lo_r,
+        max: hi_r,
+    } = engine.signal().velocity_range();
     let span = (hi_r - lo_r).max(f64::MIN_POSITIVE);
     let (p0, d0) = period_map(engine, guess)?;
     let g0 = p0 - guess;
@@ -101,7 +104,10 @@ pub fn fixed_point_between<E: PeriodEngine>(
     hi: f64,
     start: f64,
 ) -> Result<FixedPoint, SimulationError> {
-    let (lo_r, hi_r) = engine.signal().velocity_range();
+    let crate::signal::VelocityRange {
+        min: lo_r,
+        max: hi_r,
+    } = engine.signal().velocity_range();
     let span = (hi_r - lo_r).max(f64::MIN_POSITIVE);
     let (p, d) = period_map(engine, start)?;
     if p == start {

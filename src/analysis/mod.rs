@@ -51,5 +51,6 @@ mod transient;
 pub use error_estimate::ErrorEstimate;
 pub use fixed_point::{FixedPoint, fixed_point, fixed_point_between};
 pub use stats::{PeriodStats, StatsObserver, StatsWanted};
-pub use steady_state::{SteadyIndicators, SteadyState, steady_state, steady_state_at};
+pub(crate) use steady_state::steady_state_at;
+pub use steady_state::{SteadyIndicators, SteadyState, steady_state};
 pub use transient::{AnalysisOptions, Convergence, Transient, transient};

@@ -66,7 +66,7 @@ pub fn steady_state<E: PeriodEngine, O: Observer>(
 /// velocity), with one period observed by `observer`; `(P'(v_star),
 /// iterations, last correction)` come from the search that found it (or
 /// from the start-up that reached it).
-pub fn steady_state_at<E: PeriodEngine, O: Observer>(
+pub(crate) fn steady_state_at<E: PeriodEngine, O: Observer>(
     engine: &mut E,
     start: PeriodStart,
     (map_derivative, iterations, last_correction): (Option<f64>, u32, f64),

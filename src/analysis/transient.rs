@@ -186,7 +186,10 @@ pub fn transient<E: PeriodEngine, O: Observer>(
     observer: &mut O,
 ) -> Result<Transient, SimulationError> {
     let v_scale = engine.signal().velocity_scale();
-    let (lo_r, hi_r) = engine.signal().velocity_range();
+    let crate::signal::VelocityRange {
+        min: lo_r,
+        max: hi_r,
+    } = engine.signal().velocity_range();
     let period = engine.signal().period();
     let tol = options.transient_tolerance * v_scale;
     let mut stats = StatsObserver::new(

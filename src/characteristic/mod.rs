@@ -177,7 +177,7 @@ impl LoadAxis {
 
     /// The whole range: `[-mu_0 F_c, mu_0 F_c]` for a force (no steady state
     /// exists beyond, `domain`), `[-90, 90]` degrees on an incline.
-    pub fn default_range(self, holding_force: f64) -> (f64, f64) {
+    pub(crate) fn default_range(self, holding_force: f64) -> (f64, f64) {
         match self {
             LoadAxis::Force => (-holding_force, holding_force),
             LoadAxis::Incline => (-90.0, 90.0),

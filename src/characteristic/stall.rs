@@ -118,7 +118,7 @@ pub struct HeldBand {
 impl HeldBand {
     /// The edge on the side `side` (`-1` low loads, `1` high loads) as the
     /// pair (load not held, load held).
-    pub fn edge(&self, side: f64) -> (f64, f64) {
+    pub(crate) fn edge(&self, side: f64) -> (f64, f64) {
         if side < 0.0 {
             (self.below, self.lower)
         } else {

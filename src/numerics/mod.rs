@@ -18,4 +18,4 @@ pub(crate) mod taylor;
 pub(crate) mod trig_roots;
 
 pub use compensated::CompensatedSum;
-pub use trig_roots::{LevelRoots, TrigPoly};
+pub use trig_roots::{LevelRoots, RootsAndEnvelope, TrigPoly, WithDerivative, WithTwoDerivatives};

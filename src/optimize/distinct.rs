@@ -58,7 +58,10 @@ fn rod(shape: &Shape) -> Option<(f64, Vec<(f64, f64)>)> {
     let signal =
         crate::signal::harmonics::build(1.0, &series.amplitudes, &series.phases, Some(1.0), true)
             .ok()?;
-    let (cos, sin) = signal.coefficients();
+    let crate::signal::Coefficients {
+        cosines: cos,
+        sines: sin,
+    } = signal.coefficients();
     let mut c: Vec<(f64, f64)> = cos.iter().copied().zip(sin.iter().copied()).collect();
     c.resize(n, (0.0, 0.0));
     Some((signal.offset(), c))

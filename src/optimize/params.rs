@@ -207,7 +207,7 @@ impl Shape {
 
     /// For `n = 2`: the amplitude ratio `d_2 / d_1` and the relative phase
     /// `psi_2 = phi_2 - 2 phi_1` in `[0, 2 pi)` of the series.
-    pub fn ratio_and_phase(&self) -> (f64, f64) {
+    pub(crate) fn ratio_and_phase(&self) -> (f64, f64) {
         let c = self.coefficients();
         let d1 = c[0].0.hypot(c[0].1);
         let d2 = c[1].0.hypot(c[1].1);

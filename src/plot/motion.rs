@@ -56,7 +56,10 @@ pub const BAND_SPAN: f64 = 3.0;
 /// accelerations (6 % padded) and at least 1.25 band half-widths, at
 /// most [`BAND_SPAN`] of them. Without a band (`a_0 = 0`) it spans the
 /// rod's accelerations.
-pub fn band_range(motor: &crate::motor::Motor, rod: impl IntoIterator<Item = f64>) -> (f64, f64) {
+pub(crate) fn band_range(
+    motor: &crate::motor::Motor,
+    rod: impl IntoIterator<Item = f64>,
+) -> (f64, f64) {
     let g = motor.g_t();
     let reach = rod
         .into_iter()

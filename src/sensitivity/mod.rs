@@ -47,7 +47,7 @@ mod selection;
 mod structure;
 mod tangent;
 
-pub use parameter::Parameter;
+pub use parameter::{Parameter, VariedScene};
 pub use structure::ChangeKind;
 
 use crate::analysis;
@@ -400,7 +400,10 @@ fn branch_at(
     parameter: Parameter,
     value: f64,
 ) -> Option<f64> {
-    let (spec, params) = parameter.apply(spec, params, value);
+    let VariedScene {
+        signal: spec,
+        motor: params,
+    } = parameter.apply(spec, params, value);
     let motor = Motor::new(params).ok()?;
     let signal = Signal::build(&spec, &motor).ok()?;
     let boundary_velocity = from_rest(&signal, &motor)?;

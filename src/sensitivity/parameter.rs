@@ -21,6 +21,16 @@ use crate::motor::{Motor, MotorParams};
 use crate::signal::{Drive, Signal, SignalSpec};
 use std::fmt;
 
+/// A scene's signal and motor with one [`Parameter`] set
+/// ([`Parameter::apply`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct VariedScene {
+    /// The signal as the scene gives it.
+    pub signal: SignalSpec,
+    /// The motor parameters.
+    pub motor: MotorParams,
+}
+
 /// A scene field.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Parameter {
@@ -159,12 +169,7 @@ impl Parameter {
 
     /// The scene with this parameter set to `value` (validated when the
     /// motor and signal are built).
-    pub fn apply(
-        self,
-        spec: &SignalSpec,
-        motor: &MotorParams,
-        value: f64,
-    ) -> (SignalSpec, MotorParams) {
+    pub fn apply(self, spec: &SignalSpec, motor: &MotorParams, value: f64) -> VariedScene {
         let (mut spec, mut motor) = (spec.clone(), *motor);
         match (self, &mut spec) {
             (Parameter::ExtraAcceleration, _) => motor.extra_acceleration = value,
@@ -204,7 +209,10 @@ impl Parameter {
             }
             _ => {}
         }
-        (spec, motor)
+        VariedScene {
+            signal: spec,
+            motor,
+        }
     }
 
     /// A scale for the parameter (its own units): the distance to a change

@@ -19,6 +19,7 @@
 use super::IdealShape;
 use super::RodState;
 use super::piecewise::{MIN_HARMONICS, Piecewise};
+use super::{Coefficients, IdealTimes, VelocityRange};
 use crate::error::{Num, ParamError};
 use crate::motor::Motor;
 use crate::numerics::bracket;
@@ -47,7 +48,7 @@ pub struct FourierSignal {
     acceleration_levels: OnceLock<Box<LevelRoots>>,
     /// `min v_R` and `max v_R`, from the roots of `a_R`, found once: every
     /// rounding bound and the engine's tolerances scale with them.
-    velocity_range: OnceLock<(f64, f64)>,
+    velocity_range: OnceLock<VelocityRange>,
     /// The extrema of `x_R` (from the roots of `v_R`), found once.
     extrema: OnceLock<Extrema>,
     /// Taylor polynomials on slices of the period, used for every
@@ -194,7 +195,8 @@ impl FourierSignal {
     /// (`TrigPoly::roots_and_envelope`), found once.
     fn acceleration_zeros(&self) -> &(Vec<f64>, Vec<f64>) {
         self.acceleration_zeros.get_or_init(|| {
-            let (roots, bounds) = self.acceleration_levels().roots_and_envelope(0.0);
+            let found = self.acceleration_levels().roots_and_envelope(0.0);
+            let (roots, bounds) = (found.roots, found.envelope);
             let phases = roots.into_iter().map(|theta| theta / self.omega).collect();
             (phases, bounds)
         })
@@ -214,7 +216,7 @@ impl FourierSignal {
 
     /// Smallest and largest rod velocity over a period, exact: the values at
     /// the roots of `a_R`. Found once (`O(n^2)`), then kept.
-    pub fn velocity_range(&self) -> (f64, f64) {
+    pub fn velocity_range(&self) -> VelocityRange {
         *self.velocity_range.get_or_init(|| {
             let mut lo = self.velocity(0.0);
             let mut hi = lo;
@@ -223,7 +225,7 @@ impl FourierSignal {
                 lo = lo.min(v);
                 hi = hi.max(v);
             }
-            (lo, hi)
+            VelocityRange { min: lo, max: hi }
         })
     }
 
@@ -255,7 +257,7 @@ impl FourierSignal {
     /// the signal whose Gibbs overshoot section 4 discusses.
     pub fn partial_sum(shape: IdealShape, n: usize, sigma: bool, motor: &Motor) -> Self {
         let shape = shape.resolved(n);
-        let (t1, period) = shape.times(motor);
+        let IdealTimes { t1, period } = shape.times(motor);
         let t1 = if shape.duty == 1.0 { period } else { t1 };
         let (offset, mut a, mut b) = ideal_coefficients(shape.a_r(motor), t1, period, n);
         if sigma {
@@ -311,9 +313,12 @@ impl FourierSignal {
             .collect()
     }
 
-    /// Cosine and sine coefficients `(A_k, B_k)`.
-    pub fn coefficients(&self) -> (&[f64], &[f64]) {
-        (&self.cos, &self.sin)
+    /// The cosine and sine coefficients `A_k`, `B_k`.
+    pub fn coefficients(&self) -> Coefficients<'_> {
+        Coefficients {
+            cosines: &self.cos,
+            sines: &self.sin,
+        }
     }
 
     /// `sum_k (k w_0)^2 d_k`, a bound on `|a_R|` (m/s^2).
@@ -438,7 +443,7 @@ impl FourierSignal {
 
     /// Velocity and acceleration at phase `tau` in one pass.
     #[inline]
-    pub fn velocity_acceleration(&self, tau: f64) -> (f64, f64) {
+    pub(crate) fn velocity_acceleration(&self, tau: f64) -> (f64, f64) {
         if let Some(f) = &self.fast {
             return f.velocity_acceleration(tau);
         }

@@ -27,7 +27,7 @@ pub struct IdealSignal {
 impl IdealSignal {
     /// The signal for a validated shape and motor.
     pub fn new(shape: IdealShape, motor: &Motor) -> Self {
-        let (t1, period) = shape.times(motor);
+        let super::IdealTimes { t1, period } = shape.times(motor);
         let t1 = if shape.duty == 1.0 { period } else { t1 };
         Self {
             a_r: shape.a_r(motor),

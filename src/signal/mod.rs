@@ -32,7 +32,26 @@ use std::cmp::Ordering;
 pub use description::SignalDescription;
 pub use fourier::FourierSignal;
 pub(crate) use ideal::IdealSignal;
-pub use shape::{Drive, Held, IdealShape};
+pub use shape::{Drive, Held, IdealShape, IdealTimes};
+
+/// The coefficients of a series ([`FourierSignal::coefficients`]),
+/// harmonic `k` at index `k - 1`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Coefficients<'a> {
+    /// `A_k`, multiplying `cos(k w_0 t)` (m).
+    pub cosines: &'a [f64],
+    /// `B_k`, multiplying `sin(k w_0 t)` (m).
+    pub sines: &'a [f64],
+}
+
+/// The smallest and largest rod velocity over a period (m/s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VelocityRange {
+    /// `min v_R`.
+    pub min: f64,
+    /// `max v_R`.
+    pub max: f64,
+}
 
 /// What a scene asks for as the rod signal (validated by [`SignalSpec::validate`]).
 #[derive(Debug, Clone, PartialEq)]
@@ -313,7 +332,7 @@ impl Signal {
         ) = spec.shape()
         {
             let a_r = shape.a_r(motor);
-            let (_, period) = shape.times(motor);
+            let period = shape.times(motor).period;
             if !(a_r > 0.0 && period.is_finite() && period > 0.0) {
                 return Err(ParamError::Inconsistent {
                     field: "signal.kappa".to_owned(),
@@ -372,7 +391,7 @@ impl Signal {
 
     /// A bound on `|a_R|` over a period: `(0, sum k^2 w^2 d_k)` for a
     /// series, `(0, |a_R|)` for the ideal signal.
-    pub fn acceleration_bound(&self) -> (f64, f64) {
+    pub(crate) fn acceleration_bound(&self) -> (f64, f64) {
         match self {
             Signal::Ideal(s) => (0.0, s.a_r().abs()),
             Signal::Fourier(s) => (0.0, s.acceleration_bound()),
@@ -422,7 +441,7 @@ impl Signal {
 
     /// Velocity and acceleration at phase `tau` (the engine's hot path).
     #[inline]
-    pub fn velocity_acceleration(&self, tau: f64) -> (f64, f64) {
+    pub(crate) fn velocity_acceleration(&self, tau: f64) -> (f64, f64) {
         match self {
             Signal::Ideal(s) => {
                 let st = s.state(tau);
@@ -551,11 +570,14 @@ impl Signal {
 
     /// Smallest and largest rod velocity over a period, exact (from the
     /// roots of `a_R`; for the ideal signal `0` and `a_R t_1`).
-    pub fn velocity_range(&self) -> (f64, f64) {
+    pub fn velocity_range(&self) -> VelocityRange {
         match self {
             Signal::Ideal(s) => {
                 let v = s.a_r() * s.t1();
-                (v.min(0.0), v.max(0.0))
+                VelocityRange {
+                    min: v.min(0.0),
+                    max: v.max(0.0),
+                }
             }
             Signal::Fourier(s) => s.velocity_range(),
         }
@@ -627,7 +649,7 @@ impl Signal {
 
     /// Largest magnitude of the rod velocity over a period.
     pub fn velocity_scale(&self) -> f64 {
-        let (lo, hi) = self.velocity_range();
+        let VelocityRange { min: lo, max: hi } = self.velocity_range();
         lo.abs().max(hi.abs())
     }
 

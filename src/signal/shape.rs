@@ -86,6 +86,16 @@ impl Drive {
     }
 }
 
+/// The acceleration time and period of an ideal shape
+/// ([`IdealShape::times`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IdealTimes {
+    /// The acceleration time `t_1` (s).
+    pub t1: f64,
+    /// The period `T` (s).
+    pub period: f64,
+}
+
 /// The ideal signal (11) as a scene gives it: stroke, drive and duty.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct IdealShape {
@@ -140,7 +150,7 @@ impl IdealShape {
         match self.drive {
             Drive::Kappa(kappa) => kappa * motor.a_0(),
             Drive::Frequency(_) => {
-                let (t1, _) = self.times(motor);
+                let t1 = self.times(motor).t1;
                 2.0 * self.stroke / (t1 * t1)
             }
             Drive::FMax(_) => f64::NAN,
@@ -151,11 +161,14 @@ impl IdealShape {
     /// `t_1 = sqrt(2 x_Rmax / a_R)` for a `kappa` drive, from `T = 1 / f_0`
     /// for a frequency (`t_1 = T` for the continuous signal). An `f_max`
     /// drive must be [`resolved`](Self::resolved) first (NaN otherwise).
-    pub fn times(&self, motor: &Motor) -> (f64, f64) {
+    pub fn times(&self, motor: &Motor) -> IdealTimes {
         match self.drive {
             Drive::Kappa(_) => {
                 let t1 = (2.0 * self.stroke / self.a_r(motor)).sqrt();
-                (t1, t1 / self.duty)
+                IdealTimes {
+                    t1,
+                    period: t1 / self.duty,
+                }
             }
             Drive::Frequency(f0) => {
                 let period = 1.0 / f0;
@@ -164,9 +177,12 @@ impl IdealShape {
                 } else {
                     self.duty * period
                 };
-                (t1, period)
+                IdealTimes { t1, period }
             }
-            Drive::FMax(_) => (f64::NAN, f64::NAN),
+            Drive::FMax(_) => IdealTimes {
+                t1: f64::NAN,
+                period: f64::NAN,
+            },
         }
     }
 
@@ -184,7 +200,7 @@ impl IdealShape {
     pub fn f0(&self, motor: &Motor) -> f64 {
         match self.drive {
             Drive::Frequency(f0) => f0,
-            _ => 1.0 / self.times(motor).1,
+            _ => 1.0 / self.times(motor).period,
         }
     }
 

@@ -221,7 +221,10 @@ pub(super) fn covering_search<E: PeriodEngine>(
     wanted: StatsWanted,
     trajectory: &mut Option<Trajectory>,
 ) -> Result<Search, Error> {
-    let (lo_r, hi_r) = engine.signal().velocity_range();
+    let crate::signal::VelocityRange {
+        min: lo_r,
+        max: hi_r,
+    } = engine.signal().velocity_range();
     let (far, slides_on) = if growing && hi_r > 0.0 {
         (hi_r, motor.g_t() - motor.a_d() > 0.0)
     } else if !growing && lo_r < 0.0 {

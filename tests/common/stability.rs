@@ -562,7 +562,7 @@ fn grazing_check(case: &StressCase, phase_fraction: f64) -> (bool, String) {
     let Ok(motor) = Motor::new(case.scene.motor) else {
         return (false, "invalid motor".into());
     };
-    let (v_min, _) = signal.velocity_range();
+    let v_min = signal.velocity_range().min;
     let mut engine = EventEngine::new(signal, &motor, EventOptions::default());
     let mut log = EventLog::default();
     let start = PeriodStart {

@@ -51,7 +51,10 @@ fn the_growth_bound_bounds_the_map_between_two_probes() {
     for (spec, params) in scenes() {
         let motor = Motor::new(params).unwrap();
         let signal = Signal::build(&spec, &motor).unwrap();
-        let (lo_r, hi_r) = signal.velocity_range();
+        let crate::signal::VelocityRange {
+            min: lo_r,
+            max: hi_r,
+        } = signal.velocity_range();
         let mut engine = EventEngine::new(&signal, &motor, EventOptions::default());
         let friction = Friction {
             a_0: motor.a_0(),

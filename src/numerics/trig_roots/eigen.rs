@@ -32,7 +32,7 @@
 
 use nalgebra::{Complex, DMatrix, DVector, Schur};
 
-use super::{EPS, MAX_ACCEPT, TrigPoly};
+use super::{EPS, MAX_ACCEPT, TrigPoly, WithTwoDerivatives};
 
 /// Multiple of the simple-root displacement `η/|p'|` accepted off the circle
 /// (measured displacements stay below 100).
@@ -96,7 +96,11 @@ impl TrigPoly {
                     return None;
                 }
                 let theta = z.im.atan2(z.re);
-                let (_, dp, d2p) = self.eval_with_two_derivatives(theta);
+                let WithTwoDerivatives {
+                    first: dp,
+                    second: d2p,
+                    ..
+                } = self.eval_with_two_derivatives(theta);
                 let simple = SIMPLE_ACCEPT * eta / dp.abs();
                 let double = DOUBLE_ACCEPT * (2.0 * eta / d2p.abs()).sqrt();
                 (off <= simple.max(double)).then_some((theta, off))
@@ -112,7 +116,7 @@ impl TrigPoly {
         if self.is_zero_at(theta, eta) {
             return Some(theta);
         }
-        let (_, _, d2p) = self.eval_with_two_derivatives(theta0);
+        let d2p = self.eval_with_two_derivatives(theta0).second;
         let radius = (10.0 * off)
             .max(10.0 * (2.0 * eta / d2p.abs()).sqrt())
             .min(MAX_ACCEPT);

@@ -7,7 +7,7 @@
 use std::f64::consts::{PI, TAU};
 use std::sync::OnceLock;
 
-use super::{EPS, NEWTON_ITERS, TrigPoly};
+use super::{EPS, NEWTON_ITERS, TrigPoly, WithDerivative, WithTwoDerivatives};
 use crate::numerics::taylor;
 
 /// Terms of a Taylor model: orders `j < ORDER`.
@@ -412,7 +412,16 @@ impl<'a> Finder<'a> {
     /// The root of `p` in `[lo, hi]` (signs `s_lo`, `-s_lo` at the ends,
     /// monotone between), from a model estimate `guess`.
     fn solve(&self, lo: f64, hi: f64, s_lo: f64, guess: f64) -> Candidate {
-        let (theta, _, slope) = bracketed(|t| self.p.eval_with_derivative(t), lo, hi, s_lo, guess);
+        let (theta, _, slope) = bracketed(
+            |t| {
+                let w = self.p.eval_with_derivative(t);
+                (w.value, w.derivative)
+            },
+            lo,
+            hi,
+            s_lo,
+            guess,
+        );
         Candidate {
             theta,
             slope: slope.is_finite().then_some(slope),
@@ -462,7 +471,10 @@ impl<'a> Finder<'a> {
             1.0
         };
         let tc = self.critical_point(piece.theta(uc), lo, hi);
-        let (pc, dpc) = self.p.eval_with_derivative(tc);
+        let WithDerivative {
+            value: pc,
+            derivative: dpc,
+        } = self.p.eval_with_derivative(tc);
         if pc.abs() <= self.eta {
             // extremum at rounding level: a tangency, reported once
             out.push(Candidate {
@@ -500,7 +512,11 @@ impl<'a> Finder<'a> {
     fn critical_point(&self, theta: f64, lo: f64, hi: f64) -> f64 {
         let mut x = theta;
         for _ in 0..NEWTON_ITERS {
-            let (_, d1, d2) = self.p.eval_with_two_derivatives(x);
+            let WithTwoDerivatives {
+                first: d1,
+                second: d2,
+                ..
+            } = self.p.eval_with_two_derivatives(x);
             let next = (x - d1 / d2).clamp(lo, hi);
             if !next.is_finite() {
                 break;

@@ -4,7 +4,7 @@
 use std::f64::consts::TAU;
 
 use super::isolate::{Candidate, Models};
-use super::{EPS, MAX_ACCEPT, TrigPoly, wrap};
+use super::{EPS, MAX_ACCEPT, TrigPoly, WithTwoDerivatives, wrap};
 
 impl TrigPoly {
     /// Groups the candidates that are one root — `p` at rounding level
@@ -94,7 +94,11 @@ impl TrigPoly {
             .copied()
             .min_by(|&x, &y| abs_p(x).total_cmp(&abs_p(y)))
             .unwrap_or(0.0);
-        let (p, dp, d2p) = self.eval_with_two_derivatives(best);
+        let WithTwoDerivatives {
+            value: p,
+            first: dp,
+            second: d2p,
+        } = self.eval_with_two_derivatives(best);
         let tangent = group.len() > 1 || dp.abs() <= 4.0 * (eta * d2p.abs()).sqrt();
         if !tangent {
             return best;

@@ -152,6 +152,38 @@ const NEWTON_ITERS: usize = 30;
 /// Largest single Newton step on `p`, radians.
 const NEWTON_MAX_STEP: f64 = 1.0e-3;
 
+/// `p(θ)` and its derivative ([`TrigPoly::eval_with_derivative`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WithDerivative {
+    /// `p(θ)`.
+    pub value: f64,
+    /// `p'(θ)`.
+    pub derivative: f64,
+}
+
+/// `p(θ)` and its first two derivatives
+/// ([`TrigPoly::eval_with_two_derivatives`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WithTwoDerivatives {
+    /// `p(θ)`.
+    pub value: f64,
+    /// `p'(θ)`.
+    pub first: f64,
+    /// `p''(θ)`.
+    pub second: f64,
+}
+
+/// The roots of a polynomial and an envelope of its magnitude
+/// ([`TrigPoly::roots_and_envelope`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RootsAndEnvelope {
+    /// The roots in `[0, 2π)`, ascending ([`TrigPoly::roots`]).
+    pub roots: Vec<f64>,
+    /// Bounds on `|p|` over `N` equal intervals of `[0, 2π)`: entry `i`
+    /// bounds `|p(θ)|` for `θ` in `[i 2π/N, (i + 1) 2π/N]`.
+    pub envelope: Vec<f64>,
+}
+
 /// A real trigonometric polynomial
 /// `p(θ) = c0 + Σ_{k=1}^{n} (a[k-1] cos kθ + b[k-1] sin kθ)`.
 #[derive(Debug, Clone, PartialEq)]
@@ -210,9 +242,9 @@ impl TrigPoly {
         p
     }
 
-    /// `(p(θ), p'(θ))`, one `sin_cos`, no allocation.
+    /// `p(θ)` and `p'(θ)`, one `sin_cos`, no allocation.
     #[inline]
-    pub fn eval_with_derivative(&self, theta: f64) -> (f64, f64) {
+    pub fn eval_with_derivative(&self, theta: f64) -> WithDerivative {
         let (s1, c1) = theta.sin_cos();
         let (mut ck, mut sk) = (1.0, 0.0);
         let mut p = self.c0;
@@ -226,12 +258,15 @@ impl TrigPoly {
             p += ak * ck + bk * sk;
             dp += k * (bk * ck - ak * sk);
         }
-        (p, dp)
+        WithDerivative {
+            value: p,
+            derivative: dp,
+        }
     }
 
-    /// `(p(θ), p'(θ), p''(θ))`, one `sin_cos`, no allocation.
+    /// `p(θ)`, `p'(θ)` and `p''(θ)`, one `sin_cos`, no allocation.
     #[inline]
-    pub fn eval_with_two_derivatives(&self, theta: f64) -> (f64, f64, f64) {
+    pub fn eval_with_two_derivatives(&self, theta: f64) -> WithTwoDerivatives {
         let (s1, c1) = theta.sin_cos();
         let (mut ck, mut sk) = (1.0, 0.0);
         let mut p = self.c0;
@@ -248,7 +283,11 @@ impl TrigPoly {
             dp += k * (bk * ck - ak * sk);
             d2p -= k * k * even;
         }
-        (p, dp, d2p)
+        WithTwoDerivatives {
+            value: p,
+            first: dp,
+            second: d2p,
+        }
     }
 
     /// The derivative `d/dθ`: `a'_k = k b_k`, `b'_k = -k a_k`, `c0' = 0`.
@@ -364,11 +403,11 @@ impl TrigPoly {
     ///
     /// Cost: `O(n^2)`; about 0.2 ms for `n = 64`, 2 ms for `n = 256`.
     pub fn roots(&self) -> Vec<f64> {
-        self.roots_and_envelope().0
+        self.roots_and_envelope().roots
     }
 
     /// [`TrigPoly::roots`], and an envelope of `|p|` from the same Taylor
-    /// models at no extra cost: with `N` the length of the second vector,
+    /// models at no extra cost: with `N` the length of the envelope,
     /// its entry `i` bounds `|p(θ)|` for `θ` in `[i 2π/N, (i + 1) 2π/N]`
     /// (the model of that interval plus its error bound, `Σ_j |g_j| + δ_0`,
     /// module docs, step 1). Each entry is close to the largest `|p|` on its
@@ -376,18 +415,27 @@ impl TrigPoly {
     /// times the largest `|p|` within `2/n` of it. A polynomial without
     /// significant harmonics gives one entry, `|c0|` plus the coefficients'
     /// sum; non-finite coefficients give one infinite entry.
-    pub fn roots_and_envelope(&self) -> (Vec<f64>, Vec<f64>) {
+    pub fn roots_and_envelope(&self) -> RootsAndEnvelope {
         let Some((p, e)) = self.normalized_with_exponent() else {
             let all_zero = self.c0 == 0.0 && self.degree() == 0;
-            return (Vec::new(), vec![if all_zero { 0.0 } else { f64::INFINITY }]);
+            return RootsAndEnvelope {
+                roots: Vec::new(),
+                envelope: vec![if all_zero { 0.0 } else { f64::INFINITY }],
+            };
         };
         let Some(n) = p.significant_degree() else {
-            return (Vec::new(), vec![self.c0.abs() + self.coefficient_mass()]);
+            return RootsAndEnvelope {
+                roots: Vec::new(),
+                envelope: vec![self.c0.abs() + self.coefficient_mass()],
+            };
         };
         let eta = p.eval_error_bound();
         let (found, bounds, models) = isolate::candidates(&p, n, eta);
         let roots = p.merge(found, eta, Some(&models));
-        (roots, bounds.into_iter().map(|b| ldexp(b, -e)).collect())
+        RootsAndEnvelope {
+            roots,
+            envelope: bounds.into_iter().map(|b| ldexp(b, -e)).collect(),
+        }
     }
 
     /// A finder of the roots of `self = level` for many levels that shares
@@ -479,14 +527,20 @@ impl TrigPoly {
     /// The computed `p'(θ)` if `|p(θ)|` is at rounding level
     /// ([`TrigPoly::is_zero_at`]).
     fn slope_if_zero_at(&self, theta: f64, eta: f64) -> Option<f64> {
-        let (p, dp) = self.eval_with_derivative(theta);
+        let WithDerivative {
+            value: p,
+            derivative: dp,
+        } = self.eval_with_derivative(theta);
         (p.abs() <= eta + dp.abs() * EPS * theta.abs().max(1.0)).then_some(dp)
     }
 
     /// Newton on `p` with steps bounded by `NEWTON_MAX_STEP`; returns the
     /// iterate of smallest `|p|`, which is `theta0` if Newton never improves.
     fn newton(&self, theta0: f64) -> f64 {
-        let (mut p, mut dp) = self.eval_with_derivative(theta0);
+        let WithDerivative {
+            value: mut p,
+            derivative: mut dp,
+        } = self.eval_with_derivative(theta0);
         let mut theta = theta0;
         let mut best = (theta0, p.abs());
         for _ in 0..NEWTON_ITERS {
@@ -495,7 +549,10 @@ impl TrigPoly {
             }
             let step = (p / dp).clamp(-NEWTON_MAX_STEP, NEWTON_MAX_STEP);
             theta -= step;
-            (p, dp) = self.eval_with_derivative(theta);
+            WithDerivative {
+                value: p,
+                derivative: dp,
+            } = self.eval_with_derivative(theta);
             if p.abs() < best.1 {
                 best = (theta, p.abs());
             }
@@ -511,7 +568,11 @@ impl TrigPoly {
     fn critical_point(&self, theta0: f64, radius: f64) -> Option<f64> {
         let mut theta = theta0;
         for _ in 0..NEWTON_ITERS {
-            let (_, dp, d2p) = self.eval_with_two_derivatives(theta);
+            let WithTwoDerivatives {
+                first: dp,
+                second: d2p,
+                ..
+            } = self.eval_with_two_derivatives(theta);
             if dp == 0.0 {
                 break;
             }
@@ -560,7 +621,7 @@ impl LevelRoots {
     }
 
     /// [`TrigPoly::roots_and_envelope`] of `p - level`.
-    pub fn roots_and_envelope(&self, level: f64) -> (Vec<f64>, Vec<f64>) {
+    pub fn roots_and_envelope(&self, level: f64) -> RootsAndEnvelope {
         let mut q = self.poly.clone();
         q.c0 -= level;
         let Some((p, e)) = q.normalized_with_exponent() else {
@@ -578,12 +639,15 @@ impl LevelRoots {
         let eta = p.eval_error_bound();
         let (found, bounds, kept) = isolate::candidates_with(&p, n, eta, models);
         let roots = p.merge(found, eta, Some(&kept));
-        (roots, bounds.into_iter().map(|b| ldexp(b, -e)).collect())
+        RootsAndEnvelope {
+            roots,
+            envelope: bounds.into_iter().map(|b| ldexp(b, -e)).collect(),
+        }
     }
 
     /// The roots of `p = level` ([`TrigPoly::roots_at_level`]).
     pub fn roots(&self, level: f64) -> Vec<f64> {
-        self.roots_and_envelope(level).0
+        self.roots_and_envelope(level).roots
     }
 }
 
