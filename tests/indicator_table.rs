@@ -142,18 +142,7 @@ fn a_sweep_row_and_a_sweep_figure_show_every_indicator() {
         if i.unit() != "1" {
             assert!(label.ends_with(&format!("({})", i.unit())), "{label}");
         }
-        let doc = roxmltree::Document::parse(&figure).expect("the SVG parses");
-        let shown: Vec<String> = doc
-            .descendants()
-            .filter(|n| n.has_tag_name("text"))
-            .map(|n| {
-                n.descendants()
-                    .filter(|d| d.is_text())
-                    .filter_map(|d| d.text())
-                    .collect::<String>()
-                    .replace('\u{a0}', " ")
-            })
-            .collect();
+        let shown = common::svg_texts(&figure);
         assert!(
             shown.contains(&label),
             "the axis label of {i} is {label}; the figure shows {shown:?}"

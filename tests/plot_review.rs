@@ -5,6 +5,8 @@
 //! the figure; no underscore in any text. A figure added to the registry
 //! is checked here without touching this file.
 
+mod common;
+
 use stickslip::plot::Preset;
 use stickslip::plot::marks::Role;
 use stickslip::plot::registry::ALL;
@@ -51,19 +53,8 @@ fn the_marks_describe_the_svg_that_is_written() {
             "{}",
             entry.name
         );
-        let doc = roxmltree::Document::parse(&svg).unwrap();
-        let shown: Vec<String> = doc
-            .descendants()
-            .filter(|n| n.has_tag_name("text"))
-            .map(|n| {
-                n.descendants()
-                    .filter(|d| d.is_text())
-                    .filter_map(|d| d.text())
-                    .collect::<String>()
-                    // Edge spaces of a rich text's runs are no-break spaces.
-                    .replace('\u{a0}', " ")
-            })
-            .collect();
+        // Edge spaces of a rich text's runs are no-break spaces.
+        let shown = common::svg_texts(&svg);
         let marked: Vec<String> = marks
             .texts
             .iter()

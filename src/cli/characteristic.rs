@@ -10,7 +10,6 @@
 
 use super::{Failure, SceneOptions, Streams, refuse_outputs, write_out};
 use crate::characteristic::{self, CharacteristicOptions, LoadAxis, table};
-use crate::plot::Preset;
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
 
@@ -153,14 +152,7 @@ pub(crate) fn characteristic(
         });
         let figure =
             crate::plot::characteristic::figure(&c, &scene, &name).map_err(|e| e.to_string())?;
-        let preset = args
-            .style
-            .as_deref()
-            .and_then(Preset::from_name)
-            .unwrap_or(figure.preset);
-        figure
-            .write(path, &preset.style(), 300.0)
-            .map_err(|e| e.to_string())?;
+        super::write_figure(&figure, args.style.as_deref(), path)?;
     }
     match &args.output {
         Some(path) => crate::output::write_atomically(path, text.as_bytes())

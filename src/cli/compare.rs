@@ -6,7 +6,6 @@
 use super::{Streams, refuse_outputs};
 use crate::compare::read::{LengthUnit, ReadOptions, TimeUnit};
 use crate::compare::{self, CompareOptions, Metric};
-use crate::plot::Preset;
 use clap::Args;
 use std::path::{Path, PathBuf};
 
@@ -158,14 +157,7 @@ fn run(args: CompareArgs, streams: &mut Streams<'_>) -> Result<bool, String> {
             .map_or("compare".to_owned(), |s| s.to_string_lossy().into_owned());
         let figure = crate::plot::compare::figure(&report, args.figure_periods, &name)
             .map_err(|e| e.to_string())?;
-        let preset = args
-            .style
-            .as_deref()
-            .and_then(Preset::from_name)
-            .unwrap_or(figure.preset);
-        figure
-            .write(path, &preset.style(), 300.0)
-            .map_err(|e| e.to_string())?;
+        super::write_figure(&figure, args.style.as_deref(), path)?;
     }
     let text = if args.json {
         let mut t = serde_json::to_string_pretty(&report.to_json()).map_err(|e| e.to_string())?;

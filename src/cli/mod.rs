@@ -292,9 +292,6 @@ pub(crate) fn refuse_output_over_input(output: &Path, inputs: &[&Path]) -> Resul
     Ok(())
 }
 
-/// Refuses every output that is one of `inputs`
-/// ([`refuse_output_over_input`]) or names the same file as an earlier
-/// output. Call it before any work is done.
 /// Checks that a figure named by `flag` can be written: its extension picks
 /// a format (`.svg`, `.pdf`, `.png`) and its directory exists.
 pub(crate) fn check_figure_path(flag: &str, figure: &Path) -> Result<(), Failure> {
@@ -314,6 +311,25 @@ pub(crate) fn check_figure_path(flag: &str, figure: &Path) -> Result<(), Failure
     Ok(())
 }
 
+/// Writes `figure` to `path` (format from the extension, CSV beside it) in
+/// the preset `style` names, or the figure's own, at 300 dpi for PNG.
+pub(crate) fn write_figure(
+    figure: &crate::plot::Figure,
+    style: Option<&str>,
+    path: &Path,
+) -> Result<(), Failure> {
+    let preset = style
+        .and_then(crate::plot::Preset::from_name)
+        .unwrap_or(figure.preset);
+    figure
+        .write(path, &preset.style(), 300.0)
+        .map(|_| ())
+        .map_err(|e| e.to_string())
+}
+
+/// Refuses every output that is one of `inputs`
+/// ([`refuse_output_over_input`]) or names the same file as an earlier
+/// output. Call it before any work is done.
 pub(crate) fn refuse_outputs(outputs: &[&Path], inputs: &[&Path]) -> Result<(), Failure> {
     for (i, output) in outputs.iter().enumerate() {
         refuse_output_over_input(output, inputs)?;

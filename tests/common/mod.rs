@@ -184,3 +184,20 @@ pub fn failure(o: Output) -> String {
 pub fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
+
+/// The texts of an SVG's `<text>` elements, in document order, each its
+/// runs joined (the no-break spaces at a rich text's run edges read as
+/// spaces).
+pub fn svg_texts(svg: &str) -> Vec<String> {
+    let doc = roxmltree::Document::parse(svg).expect("the SVG parses");
+    doc.descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .map(|n| {
+            n.descendants()
+                .filter(|d| d.is_text())
+                .filter_map(|d| d.text())
+                .collect::<String>()
+                .replace('\u{a0}', " ")
+        })
+        .collect()
+}
