@@ -248,7 +248,7 @@ fn v_inf_is_drawn_over_the_steady_slider_velocity() {
 /// start-up (not a restart from rest): each mean velocity is within 1 %
 /// of `v_inf` and they keep approaching it.
 #[test]
-fn the_startup_runs_past_p_0_99_and_keeps_approaching_v_inf() {
+fn the_startup_runs_past_the_end_of_the_start_up_and_keeps_approaching_v_inf() {
     let scene = Scene::default();
     let report = stickslip::run(&scene, &stickslip::RunOptions::default())
         .and_then(stickslip::Outcome::into_report)
