@@ -54,7 +54,8 @@
 //!    every figure's labels share;
 //! 2. [`signal`] (the rod signal, docs/model.md section 2), [`motor`] (the
 //!    slider and its friction), [`power`] (the actuator's input power,
-//!    section 6.3 of the paper);
+//!    section 6.3 of the paper); [`actuator`]: the rod driven by a voltage
+//!    through the actuator's equation, with the friction acting back on it;
 //! 3. [`engine`]: walks the slider through time and hands every exact
 //!    segment, event and period end to an [`engine::Observer`];
 //!    `engine/<method>.rs` is one engine ([`engine::EventEngine`], the
@@ -91,6 +92,7 @@
     allow(dead_code, unused_imports, unreachable_pub)
 )]
 
+pub mod actuator;
 pub mod analysis;
 pub mod characteristic;
 pub mod check;

@@ -25,6 +25,7 @@ const LAYERS: &[&[&str]] = &[
     &["motor"],
     &["signal"],
     &["power"],
+    &["actuator"],
     &["engine"],
     &["observer"],
     &["analysis"],

@@ -718,6 +718,7 @@ proptest! {
             },
             signal,
             actuator,
+            rod: stickslip::actuator::RodModel::Prescribed,
             run: RunSettings {
                 engine: EngineKind::Event,
                 steps_per_harmonic: steps,

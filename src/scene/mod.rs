@@ -120,6 +120,7 @@ pub use overrides::{Override, OverrideError};
 pub(crate) use toml_error::parse_message;
 pub use warnings::Warning;
 
+use crate::actuator::{DrivenSpec, RodModel};
 use crate::error::{Error, Num, ParamError, SceneError};
 use crate::indicator::Indicator;
 use crate::motor::{Motor, MotorParams};
@@ -314,6 +315,9 @@ pub struct Scene {
     pub signal: SignalSpec,
     /// The actuator model, needed for power outputs (`[actuator]`).
     pub actuator: Option<ActuatorParams>,
+    /// How the rod moves (`[actuator] rod`): prescribed, or driven by the
+    /// voltage through the actuator (docs/model.md section 16).
+    pub rod: RodModel,
     /// How to run (`[run]`).
     pub run: RunSettings,
     /// What to report (`[outputs]`).
@@ -329,6 +333,7 @@ impl Default for Scene {
             motor: MotorParams::default(),
             signal: SignalSpec::paper_default(),
             actuator: Some(ActuatorParams::default()),
+            rod: RodModel::Prescribed,
             run: RunSettings::default(),
             outputs: Outputs {
                 indicators: Indicator::ALL.to_vec(),
@@ -457,6 +462,9 @@ impl Scene {
         if let Some(actuator) = &self.actuator {
             actuator.validate()?;
         }
+        if let RodModel::Driven(spec) = &self.rod {
+            check_driven(&self.signal, self.actuator.as_ref(), spec)?;
+        }
         if self.run.steps_per_harmonic == 0 {
             return Err(ParamError::out_of_range(
                 "run.steps_per_harmonic",
@@ -498,5 +506,37 @@ impl Scene {
             }
         }
         Ok(())
+    }
+}
+
+/// A driven rod needs an actuator and a continuous signal that starts at
+/// rest (docs/model.md section 16): `fourier`, or `harmonics` shifted to
+/// its minimum.
+fn check_driven(
+    signal: &SignalSpec,
+    actuator: Option<&ActuatorParams>,
+    spec: &DrivenSpec,
+) -> Result<(), ParamError> {
+    let Some(actuator) = actuator else {
+        return Err(ParamError::Inconsistent {
+            field: "actuator.rod".to_owned(),
+            reason: "a driven rod needs the [actuator] parameters".to_owned(),
+        });
+    };
+    spec.real.apply(actuator)?;
+    match signal {
+        SignalSpec::Fourier { .. } => Ok(()),
+        SignalSpec::Harmonics {
+            shift_to_minimum: true,
+            ..
+        } => Ok(()),
+        SignalSpec::Harmonics { .. } => Err(ParamError::Inconsistent {
+            field: "signal.shift_to_minimum".to_owned(),
+            reason: "must be true for a driven rod, which starts at rest at x_R = 0".to_owned(),
+        }),
+        SignalSpec::Ideal(_) => Err(ParamError::Inconsistent {
+            field: "signal.kind".to_owned(),
+            reason: "\"ideal\" jumps, which no actuator follows: a driven rod needs \"fourier\" or \"harmonics\"".to_owned(),
+        }),
     }
 }
