@@ -314,4 +314,16 @@ pub trait PeriodEngine {
     fn steady_state_from_transient(&self) -> bool {
         false
     }
+
+    /// True if the engine's state at a period boundary holds more than the
+    /// slider's velocity: a driven rod (docs/model.md section 16) carries
+    /// its own position and velocity from period to period. Such an engine
+    /// continues, in `run_period`, from the state its previous period
+    /// ended in (period 1 starts from rest), so the period map is not a
+    /// function of the slider velocity: the motion from rest decides the
+    /// steady state, and no search evaluates the map from a chosen
+    /// velocity.
+    fn carries_rod_state(&self) -> bool {
+        false
+    }
 }
