@@ -21,6 +21,8 @@
 //! of exactly zero (a start-up period count that agrees) has no order. Every run's wall time covers the engine's set-up and the whole
 //! analysis, measured in this process.
 
+use crate::actuator::RodModel;
+use crate::engine::DrivenEngine;
 use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::fixed_step::{FixedStepEngine, FixedStepOptions};
 use crate::engine::{EventCounts, PeriodEngine};
@@ -169,11 +171,33 @@ fn timed<E: PeriodEngine>(
 pub fn check(scene: &Scene, steps: &[u32]) -> Result<CheckReport, Error> {
     let steps = validate_steps(steps)?;
     let (signal, motor) = simulation::build(scene)?;
-    let (report, wall_time) = timed(
-        || EventEngine::new(&signal, &motor, EventOptions::default()),
-        scene,
-        &motor,
-    )?;
+    let rod = match &scene.rod {
+        RodModel::Driven(spec) => Some(simulation::driven_rod(scene, spec, &signal, &motor)?),
+        RodModel::Prescribed => None,
+    };
+    let (report, wall_time) = match &rod {
+        Some(rod) => {
+            let options = EventOptions::default();
+            timed(
+                || {
+                    DrivenEngine::new(
+                        &signal,
+                        rod,
+                        &motor,
+                        options.velocity_tolerance,
+                        options.max_events_per_period,
+                    )
+                },
+                scene,
+                &motor,
+            )?
+        }
+        None => timed(
+            || EventEngine::new(&signal, &motor, EventOptions::default()),
+            scene,
+            &motor,
+        )?,
+    };
     let event = EngineRun {
         steps_per_harmonic: None,
         steps_per_period: None,
@@ -187,11 +211,18 @@ pub fn check(scene: &Scene, steps: &[u32]) -> Result<CheckReport, Error> {
             ..FixedStepOptions::default()
         };
         let per_period = FixedStepEngine::steps_for(&signal, s);
-        let (report, wall_time) = timed(
-            || FixedStepEngine::new(&signal, &motor, options),
-            scene,
-            &motor,
-        )?;
+        let (report, wall_time) = match &rod {
+            Some(rod) => timed(
+                || FixedStepEngine::driven(&signal, &motor, rod, options),
+                scene,
+                &motor,
+            )?,
+            None => timed(
+                || FixedStepEngine::new(&signal, &motor, options),
+                scene,
+                &motor,
+            )?,
+        };
         reference.push(EngineRun {
             steps_per_harmonic: Some(s),
             steps_per_period: Some(per_period),

@@ -19,11 +19,13 @@
 
 use crate::error::SimulationError;
 use crate::signal::Signal;
+pub use driven::{DrivenEngine, DrivenState};
 pub use event::{EventEngine, EventOptions};
 pub use fixed_step::{FixedStepEngine, FixedStepOptions};
 pub use observer::{Observer, PeriodEnd};
 
 pub(crate) mod contact;
+pub(crate) mod driven;
 pub(crate) mod event;
 pub(crate) mod fixed_step;
 pub(crate) mod observer;

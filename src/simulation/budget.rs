@@ -118,4 +118,8 @@ impl<E: PeriodEngine> PeriodEngine for TimeBudget<E> {
     fn steady_state_from_transient(&self) -> bool {
         self.engine.steady_state_from_transient()
     }
+
+    fn carries_rod_state(&self) -> bool {
+        self.engine.carries_rod_state()
+    }
 }

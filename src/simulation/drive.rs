@@ -86,7 +86,10 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
     let mut rest_fixed_point = None;
     // The covering's bounds on the certified limit's v_inf.
     let mut v_inf_bounds = None;
-    let fast = if engine.steady_state_from_transient() {
+    // An engine that carries the rod's state has no period map of the
+    // slider velocity alone: the motion from rest decides.
+    let rod_state = engine.carries_rod_state();
+    let fast = if engine.steady_state_from_transient() || rod_state {
         None
     } else {
         let before = engine.counters().periods;
@@ -212,7 +215,8 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
             // from rest, until its boundary state repeats.
             options.stop_at_startup = None;
             let mut settled = None;
-            for ratio_rule in [!verify, false] {
+            let rules: &[bool] = if rod_state { &[false] } else { &[!verify, false] };
+            for &ratio_rule in rules {
                 options.ratio_rule = ratio_rule;
                 event_log = scene.outputs.events.then(EventLog::default);
                 trajectory = scene.outputs.trajectory.then(Trajectory::default);
@@ -284,7 +288,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         motor.contact_force(),
         (from_orbit, certificate.kind == CertificateKind::Covering),
     );
-    if error.v_inf.is_none() && steady.stats.events.grazing > 0 {
+    if error.v_inf.is_none() && steady.stats.events.grazing > 0 && !rod_state {
         // A grazing in the steady orbit gives no engine bound; a bracket
         // of the limit from rest by points away from it gives one.
         let before = engine.counters().periods;
@@ -441,7 +445,7 @@ fn orbit_steady<E: PeriodEngine>(
         velocity,
         mode: Some(transient.final_mode),
     };
-    if transient.converged_by == Some(Convergence::Exact) {
+    if transient.converged_by == Some(Convergence::Exact) || engine.carries_rod_state() {
         return Ok(analysis::steady_state_at(
             engine,
             start(seed),

@@ -101,10 +101,12 @@ pub use outcome::{
     SteadyStateCheck, Unsettled,
 };
 
+use crate::actuator::{DrivenRod, DrivenSpec, RodModel, Voltage};
+use crate::engine::DrivenEngine;
 use crate::engine::PeriodEngine;
 use crate::engine::event::{EventEngine, EventOptions};
 use crate::engine::fixed_step::{FixedStepEngine, FixedStepOptions};
-use crate::error::{Error, SimulationError};
+use crate::error::{Error, ParamError, SimulationError};
 use crate::motor::Motor;
 use crate::scene::{EngineKind, Scene};
 use crate::signal::Signal;
@@ -159,12 +161,35 @@ pub(super) fn simulate_built(
     event: EventOptions,
     clock: Instant,
 ) -> Result<Outcome, Error> {
-    let mut outcome = match scene.run.engine {
-        EngineKind::Event => {
+    let mut outcome = match (&scene.rod, scene.run.engine) {
+        (RodModel::Driven(spec), engine) => {
+            let rod = driven_rod(scene, spec, signal, motor)?;
+            match engine {
+                EngineKind::Event => {
+                    let engine = DrivenEngine::new(
+                        signal,
+                        &rod,
+                        motor,
+                        event.velocity_tolerance,
+                        event.max_events_per_period,
+                    );
+                    simulate_timed(engine, scene, motor, clock)?
+                }
+                EngineKind::Fixed => {
+                    let options = FixedStepOptions {
+                        steps_per_harmonic: scene.run.steps_per_harmonic,
+                        ..FixedStepOptions::default()
+                    };
+                    let engine = FixedStepEngine::driven(signal, motor, &rod, options);
+                    simulate_timed(engine, scene, motor, clock)?
+                }
+            }
+        }
+        (RodModel::Prescribed, EngineKind::Event) => {
             let engine = EventEngine::new(signal, motor, event);
             simulate_timed(engine, scene, motor, clock)?
         }
-        EngineKind::Fixed => {
+        (RodModel::Prescribed, EngineKind::Fixed) => {
             let options = FixedStepOptions {
                 steps_per_harmonic: scene.run.steps_per_harmonic,
                 ..FixedStepOptions::default()
@@ -179,6 +204,28 @@ pub(super) fn simulate_built(
         Outcome::RunAway { state, .. } | Outcome::NotConverged(state) => state.wall_time = wall,
     }
     Ok(outcome)
+}
+
+/// The driven rod of a scene (`[actuator] rod = "driven"`): the voltage
+/// designed for the scene's actuator and signal, driving the real
+/// actuator.
+pub(crate) fn driven_rod(
+    scene: &Scene,
+    spec: &DrivenSpec,
+    signal: &Signal,
+    motor: &Motor,
+) -> Result<DrivenRod, Error> {
+    let (Some(design), Signal::Fourier(series)) = (&scene.actuator, signal) else {
+        // Scene::validate refuses a driven rod without an actuator or with
+        // an ideal signal.
+        return Err(ParamError::Inconsistent {
+            field: "actuator.rod".to_owned(),
+            reason: "a driven rod needs [actuator] and a continuous signal".to_owned(),
+        }
+        .into());
+    };
+    let voltage = Voltage::designed(series, design);
+    Ok(DrivenRod::new(spec, design, voltage, motor)?)
 }
 
 /// [`run`] for callers that need a steady state: a run-away or an

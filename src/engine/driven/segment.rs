@@ -1,0 +1,204 @@
+//! One mode's closed-form motion and its event functions
+//! (docs/model.md section 16): the rod's state after `s` seconds, the
+//! relative velocity in slip and the stuck system's acceleration as
+//! exponential-trigonometric functions of `s`, and their first zeros.
+
+use super::super::{Direction, Kinematics, WorkCounters};
+use crate::actuator::ModeResponse;
+use crate::numerics::{Crossing, DampedOscillator, ExpTrig};
+use crate::signal::FourierSignal;
+
+/// A mode's particular solution and free oscillation, ready to build event
+/// functions.
+#[derive(Debug, Clone)]
+pub(super) struct ModeFunctions {
+    particular: FourierSignal,
+    sigma: f64,
+    omega0: f64,
+    w: f64,
+    /// Velocity of the particular solution: cos and sin coefficients.
+    vel: [Vec<f64>; 2],
+    /// Acceleration of the particular solution: cos and sin coefficients.
+    acc: [Vec<f64>; 2],
+}
+
+/// How a stick phase ends.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum StickExit {
+    /// At the period end, still stuck.
+    PeriodEnd,
+    /// The stuck system's acceleration leaves the band after `s` seconds,
+    /// towards slip `to`.
+    Leaves { s: f64, to: Direction },
+}
+
+/// The first zero of `v_rel` in a slip.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct SlipZero {
+    /// Seconds after the segment start.
+    pub s: f64,
+    /// `v_rel` only touches zero (a grazing).
+    pub tangency: bool,
+    /// A bound on the error of `s` (s).
+    pub time_error: f64,
+}
+
+impl ModeFunctions {
+    pub(super) fn new(response: &ModeResponse) -> Self {
+        let p = response.particular.clone();
+        let w = p.omega();
+        let c = p.coefficients();
+        let n = c.cosines.len();
+        let mut vel = [Vec::with_capacity(n), Vec::with_capacity(n)];
+        let mut acc = [Vec::with_capacity(n), Vec::with_capacity(n)];
+        for (k, (a, b)) in c.cosines.iter().zip(c.sines).enumerate() {
+            let kw = (k + 1) as f64 * w;
+            // x = a cos + b sin; v = kw (b cos - a sin); a = -(kw)^2 (a cos + b sin).
+            vel[0].push(kw * b);
+            vel[1].push(-kw * a);
+            acc[0].push(-kw * kw * a);
+            acc[1].push(-kw * kw * b);
+        }
+        Self {
+            particular: p,
+            sigma: response.sigma,
+            omega0: response.omega0,
+            w,
+            vel,
+            acc,
+        }
+    }
+
+    /// The free oscillation `h` at the segment start `tau` for the rod
+    /// state `rod`.
+    fn free(&self, tau: f64, rod: Kinematics) -> DampedOscillator {
+        let p = self.particular.state(tau);
+        DampedOscillator {
+            sigma: self.sigma,
+            omega0: self.omega0,
+            y0: rod.x - p.x,
+            y1: rod.v - p.v,
+        }
+    }
+
+    /// The rod `s` seconds after `tau`, from `rod` at `tau`.
+    pub(super) fn rod_at(&self, tau: f64, rod: Kinematics, s: f64) -> Kinematics {
+        if s == 0.0 {
+            return rod;
+        }
+        let [h, dh, _] = self.free(tau, rod).eval(s);
+        let p = self.particular.state(tau + s);
+        Kinematics {
+            x: p.x + h,
+            v: p.v + dh,
+        }
+    }
+
+    /// `a_st(tau + s) - level` for the rod state `(x, v)` at `tau`, where
+    /// this is the stick mode's function.
+    pub(super) fn band_function(&self, tau: f64, x: f64, v: f64, level: f64) -> ExpTrig {
+        let free = self.free(tau, Kinematics { x, v });
+        ExpTrig {
+            poly: [-level, 0.0, 0.0],
+            w: self.w,
+            phi: tau,
+            a: self.acc[0].clone(),
+            b: self.acc[1].clone(),
+            osc: Some(free.derivative().derivative()),
+        }
+    }
+
+    /// `v_rel(s) = v_R(tau + s) - v_S - a_s s`.
+    fn v_rel(&self, tau: f64, rod: Kinematics, (v_s, a_s): (f64, f64)) -> ExpTrig {
+        let free = self.free(tau, rod);
+        ExpTrig {
+            poly: [-v_s, -a_s, 0.0],
+            w: self.w,
+            phi: tau,
+            a: self.vel[0].clone(),
+            b: self.vel[1].clone(),
+            osc: Some(free.derivative()),
+        }
+    }
+
+    /// Where a stick phase that starts at `tau` with the rod at `rod` ends
+    /// within `span`: the first time the stuck system's acceleration leaves
+    /// `[lo, hi]`. Touching an edge from inside, or crossing back in,
+    /// keeps the slider stuck.
+    pub(super) fn stick_exit(
+        &self,
+        tau: f64,
+        rod: Kinematics,
+        span: f64,
+        [lo, hi]: [f64; 2],
+        counters: &mut WorkCounters,
+    ) -> StickExit {
+        let upper = self.band_function(tau, rod.x, rod.v, hi);
+        let lower = self.band_function(tau, rod.x, rod.v, lo);
+        let tol = upper.eval_error_bound()[0];
+        let mut from = 0.0;
+        loop {
+            counters.root_iterations += 1;
+            let up = upper.first_zero(from, span, tol);
+            let down = lower.first_zero(from, span, tol);
+            let at = |c: &Option<Crossing>| match c {
+                Some(Crossing::Transversal { s, .. } | Crossing::Tangency { s }) => *s,
+                None => f64::INFINITY,
+            };
+            let (first, leaves) = if at(&up) <= at(&down) {
+                (up, Direction::Forward)
+            } else {
+                (down, Direction::Backward)
+            };
+            match first {
+                None => return StickExit::PeriodEnd,
+                Some(Crossing::Transversal { s, rising }) => {
+                    let outward = match leaves {
+                        Direction::Forward => rising,
+                        Direction::Backward => !rising,
+                    };
+                    if outward {
+                        return StickExit::Leaves { s, to: leaves };
+                    }
+                    from = s;
+                }
+                Some(Crossing::Tangency { s }) => from = s,
+            }
+            if from >= span {
+                return StickExit::PeriodEnd;
+            }
+        }
+    }
+
+    /// The first zero of `v_rel` within `span` after `tau`, for a slider
+    /// at velocity `v_s` with slip acceleration `a_s`; `departure`: the
+    /// slip leaves `v_rel = 0` at `tau`, which is not a zero again.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn slip_zero(
+        &self,
+        tau: f64,
+        rod: Kinematics,
+        slider: (f64, f64),
+        span: f64,
+        tol_v: f64,
+        departure: bool,
+        counters: &mut WorkCounters,
+    ) -> Option<SlipZero> {
+        let f = self.v_rel(tau, rod, slider);
+        counters.root_iterations += 1;
+        let _ = departure;
+        let time_error = 4.0 * f64::EPSILON * (tau + span);
+        f.first_zero(0.0, span, tol_v).map(|c| match c {
+            Crossing::Transversal { s, .. } => SlipZero {
+                s,
+                tangency: false,
+                time_error,
+            },
+            Crossing::Tangency { s } => SlipZero {
+                s,
+                tangency: true,
+                time_error,
+            },
+        })
+    }
+}
