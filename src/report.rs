@@ -12,7 +12,7 @@
 //! Every indicator has one definition and one unit ([`RunReport::value`],
 //! [`Indicator`]), the same in `run`, `check`, sweeps and figures.
 
-use crate::engine::{Direction, EventCounts};
+use crate::engine::{Direction, DriveProfile, EventCounts};
 use crate::indicator::Indicator;
 use crate::provenance;
 use crate::scene::Scene;
@@ -225,6 +225,11 @@ fn steady_json(m: &mut Map<String, Value>, r: &RunReport) {
         m.insert(indicator.name().into(), option_number(r.value(*indicator)));
         err.insert(indicator.name().into(), option_number(r.error(*indicator)));
     }
+    if let Some(d) = &r.drive {
+        for (key, value) in drive_figures(d) {
+            m.insert(key.into(), number(value));
+        }
+    }
     if let Some(check) = &r.steady_state_check {
         // The cross-check of run.verify_steady_state: the start-up's own
         // limit beside the steady state's.
@@ -431,6 +436,18 @@ fn unsettled_text(out: &mut String, state: &Unsettled, times: RunTimes) {
     );
 }
 
+/// A driven rod's figures by their output keys (docs/interface.md).
+fn drive_figures(d: &DriveProfile) -> [(&'static str, f64); 6] {
+    [
+        ("rod_deviation_max", d.rod_deviation_max),
+        ("rod_deviation_rms", d.rod_deviation_rms),
+        ("voltage_peak", d.voltage_peak),
+        ("voltage_rms", d.voltage_rms),
+        ("current_peak", d.current_peak),
+        ("current_rms", d.current_rms),
+    ]
+}
+
 fn steady_text(r: &RunReport) -> String {
     let mut out = String::new();
     let ind = &r.indicators;
@@ -484,6 +501,17 @@ fn steady_text(r: &RunReport) -> String {
             }
             Indicator::Smoothness => line(&mut out, name, shown(*indicator), ""),
             _ => line(&mut out, name, shown(*indicator), indicator.printed_unit()),
+        }
+    }
+    if let Some(d) = &r.drive {
+        let _ = writeln!(out, "driven rod (steady period):");
+        for (key, value) in drive_figures(d) {
+            let unit = match key {
+                "rod_deviation_max" | "rod_deviation_rms" => "m",
+                "voltage_peak" | "voltage_rms" => "V",
+                _ => "A",
+            };
+            line(&mut out, key, format_with_error(value, None), unit);
         }
     }
     if let Some(check) = &r.steady_state_check {

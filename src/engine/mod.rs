@@ -19,7 +19,7 @@
 
 use crate::error::SimulationError;
 use crate::signal::Signal;
-pub use driven::{DrivenEngine, DrivenState};
+pub use driven::{DriveProfile, DrivenEngine, DrivenState};
 pub use event::{EventEngine, EventOptions};
 pub use fixed_step::{FixedStepEngine, FixedStepOptions};
 pub use observer::{Observer, PeriodEnd};
@@ -327,5 +327,12 @@ pub trait PeriodEngine {
     /// velocity.
     fn carries_rod_state(&self) -> bool {
         false
+    }
+
+    /// For an engine with a driven rod: the rod's deviation from its
+    /// signal, and the voltage and current over the period whose
+    /// `segments` (in order, covering it) are given; `None` otherwise.
+    fn drive_profile(&self, _segments: &[Segment]) -> Option<DriveProfile> {
+        None
     }
 }

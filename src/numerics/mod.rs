@@ -8,12 +8,14 @@
 //! * `contour`: contour lines and superlevel regions of gridded values
 //!   (marching squares).
 //! * `line_fit`: least-squares lines and log-log slopes.
+//! * `quadrature`: Gauss-Legendre rules.
 //! * `taylor`: Taylor coefficients of a harmonic series about a point.
 
 pub(crate) mod bracket;
 mod compensated;
 pub(crate) mod contour;
 pub(crate) mod line_fit;
+pub(crate) mod quadrature;
 pub(crate) mod taylor;
 pub(crate) mod trig_roots;
 

@@ -122,4 +122,8 @@ impl<E: PeriodEngine> PeriodEngine for TimeBudget<E> {
     fn carries_rod_state(&self) -> bool {
         self.engine.carries_rod_state()
     }
+
+    fn drive_profile(&self, segments: &[crate::engine::Segment]) -> Option<crate::engine::DriveProfile> {
+        self.engine.drive_profile(segments)
+    }
 }

@@ -311,9 +311,31 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
     error.startup_time = transient
         .as_ref()
         .and_then(|t| startup_error(period, &steady, t, startup_periods, error.v_inf));
+    // A driven rod: one more steady period, recorded, gives the rod's
+    // deviation and the current the amplifier delivers.
+    let drive = if rod_state {
+        let mut recorded = Trajectory::default();
+        let start = PeriodStart {
+            velocity: steady.boundary_velocity,
+            mode: None,
+        };
+        engine.run_period(2, start, &mut recorded)?;
+        map_evaluations += 1;
+        engine.drive_profile(&recorded.segments)
+    } else {
+        None
+    };
     let power = match (&scene.actuator, &signal) {
         (Some(actuator), Signal::Fourier(s)) if wants(Indicator::VelocityPerPower) => {
-            Some(power::input_power(s, actuator))
+            let mut p = power::input_power(s, actuator);
+            if let Some(d) = &drive {
+                // The voltage is the designed one; the current is the
+                // actual rod's (21).
+                p.u_rms = d.voltage_rms;
+                p.i_rms = d.current_rms;
+                p.apparent_power = d.voltage_rms * d.current_rms;
+            }
+            Some(p)
         }
         _ => None,
     };
@@ -378,6 +400,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         trajectory: trajectory.map(|t| t.segments),
         transient,
         steady,
+        drive,
     })))
 }
 

@@ -4,7 +4,7 @@
 
 use crate::analysis::error_estimate::ErrorEstimate;
 use crate::analysis::{SteadyIndicators, SteadyState, Transient};
-use crate::engine::{Direction, Event, EventCounts, Segment, WorkCounters};
+use crate::engine::{Direction, DriveProfile, Event, EventCounts, Segment, WorkCounters};
 use crate::error::{Error, SimulationError};
 use crate::indicator::Indicator;
 use crate::power::PowerReport;
@@ -138,6 +138,10 @@ pub struct RunReport {
     pub event_log_omitted: u64,
     /// The steady-state period's segments, if asked.
     pub trajectory: Option<Vec<Segment>>,
+    /// A driven rod's deviation from its signal, voltage and current over
+    /// the steady period (docs/model.md section 16); `None` for a
+    /// prescribed rod.
+    pub drive: Option<DriveProfile>,
 }
 
 /// The mode of operation in steady state (Part I of the paper): whether the

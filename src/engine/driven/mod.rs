@@ -48,7 +48,10 @@
 //! vanishes: the rod follows the signal and the run equals the prescribed
 //! rod's (`tests/driven_rod.rs`).
 
+mod profile;
 mod segment;
+
+pub use profile::DriveProfile;
 
 use super::contact::{Band, Contact, transition};
 use super::{
@@ -457,5 +460,14 @@ impl PeriodEngine for DrivenEngine<'_> {
 
     fn carries_rod_state(&self) -> bool {
         true
+    }
+
+    fn drive_profile(&self, segments: &[Segment]) -> Option<DriveProfile> {
+        let Signal::Fourier(signal) = self.signal else {
+            return None;
+        };
+        Some(profile::profile(segments, self.rod, signal, |mode| {
+            self.functions(mode)
+        }))
     }
 }

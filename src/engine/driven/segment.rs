@@ -69,6 +69,27 @@ impl ModeFunctions {
         }
     }
 
+    /// The particular solution.
+    pub(super) fn particular(&self) -> &FourierSignal {
+        &self.particular
+    }
+
+    /// The particular solution's velocity: cos and sin coefficients.
+    pub(super) fn velocity_coefficients(&self) -> &[Vec<f64>; 2] {
+        &self.vel
+    }
+
+    /// The particular solution's acceleration: cos and sin coefficients.
+    pub(super) fn acceleration_coefficients(&self) -> &[Vec<f64>; 2] {
+        &self.acc
+    }
+
+    /// The free oscillation at the segment start `tau` for the rod state
+    /// `rod`.
+    pub(super) fn free_at(&self, tau: f64, rod: Kinematics) -> DampedOscillator {
+        self.free(tau, rod)
+    }
+
     /// The free oscillation `h` at the segment start `tau` for the rod
     /// state `rod`.
     fn free(&self, tau: f64, rod: Kinematics) -> DampedOscillator {
