@@ -149,7 +149,7 @@ impl<'s> DrivenEngine<'s> {
     fn band_after(&self, tau: f64, x: f64, v: f64) -> Band {
         let f = self.functions(Mode::Stick).band_function(tau, x, v, 0.0);
         let [a, da, dda] = f.eval(0.0);
-        let [eta, eta1, _] = f.eval_error_bound();
+        let [eta, eta1, _] = f.eval_error_bound(0.0);
         let (plus, minus) = (self.contact.a_plus, self.contact.a_minus);
         // Which way a value at an edge moves: the first derivative that is
         // clearly nonzero.

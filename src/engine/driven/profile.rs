@@ -20,7 +20,8 @@
 use super::segment::ModeFunctions;
 use crate::actuator::DrivenRod;
 use crate::engine::{Mode, Segment};
-use crate::numerics::{Crossing, ExpTrig, quadrature::GaussLegendre};
+use crate::numerics::exp_trig::{Crossing, DampedOscillator, ExpTrig, Start};
+use crate::numerics::quadrature::GaussLegendre;
 use crate::signal::FourierSignal;
 
 /// The amplifier's and the rod's figures over one steady period.
@@ -129,9 +130,11 @@ pub(super) fn profile<'a>(
 /// `max |g|` on `[0, span]`: at the ends and at every zero of `dg`.
 fn extremum(dg: &ExpTrig, span: f64, g: &impl Fn(f64) -> f64) -> f64 {
     let mut best = g(0.0).abs().max(g(span).abs());
-    let tol = dg.eval_error_bound()[0];
+    let tol = dg.eval_error_bound(span)[0];
     let mut from = 0.0;
-    while let Some(c) = dg.first_zero(from, span, tol) {
+    let mut start = Start::Clear;
+    while let Some(c) = dg.first_zero(from, span, tol, start) {
+        start = Start::AfterEvent;
         let s = match c {
             Crossing::Transversal { s, .. } | Crossing::Tangency { s } => s,
         };
@@ -156,11 +159,8 @@ fn combination(p: f64, a: &[f64], q: f64, b: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-fn scaled(
-    osc: crate::numerics::DampedOscillator,
-    factor: f64,
-) -> crate::numerics::DampedOscillator {
-    crate::numerics::DampedOscillator {
+fn scaled(osc: DampedOscillator, factor: f64) -> DampedOscillator {
+    DampedOscillator {
         y0: osc.y0 * factor,
         y1: osc.y1 * factor,
         ..osc

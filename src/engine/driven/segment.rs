@@ -5,7 +5,7 @@
 
 use super::super::{Direction, Kinematics, WorkCounters};
 use crate::actuator::ModeResponse;
-use crate::numerics::{Crossing, DampedOscillator, ExpTrig};
+use crate::numerics::exp_trig::{Crossing, DampedOscillator, ExpTrig, Start};
 use crate::signal::FourierSignal;
 
 /// A mode's particular solution and free oscillation, ready to build event
@@ -156,12 +156,15 @@ impl ModeFunctions {
     ) -> StickExit {
         let upper = self.band_function(tau, rod.x, rod.v, hi);
         let lower = self.band_function(tau, rod.x, rod.v, lo);
-        let tol = upper.eval_error_bound()[0];
+        let tol = upper.eval_error_bound(span)[0];
         let mut from = 0.0;
         loop {
             counters.root_iterations += 1;
-            let up = upper.first_zero(from, span, tol);
-            let down = lower.first_zero(from, span, tol);
+            // A stick phase starts at an event (or the period start, where
+            // the band was just decided): a value at the edge there is that
+            // decision, not a new exit.
+            let up = upper.first_zero(from, span, tol, Start::AfterEvent);
+            let down = lower.first_zero(from, span, tol, Start::AfterEvent);
             let at = |c: &Option<Crossing>| match c {
                 Some(Crossing::Transversal { s, .. } | Crossing::Tangency { s }) => *s,
                 None => f64::INFINITY,
@@ -207,9 +210,13 @@ impl ModeFunctions {
     ) -> Option<SlipZero> {
         let f = self.v_rel(tau, rod, slider);
         counters.root_iterations += 1;
-        let _ = departure;
+        let start = if departure {
+            Start::AfterEvent
+        } else {
+            Start::Clear
+        };
         let time_error = 4.0 * f64::EPSILON * (tau + span);
-        f.first_zero(0.0, span, tol_v).map(|c| match c {
+        f.first_zero(0.0, span, tol_v, start).map(|c| match c {
             Crossing::Transversal { s, .. } => SlipZero {
                 s,
                 tangency: false,
