@@ -4,8 +4,9 @@
 //!   finds every stick/slip transition and every zero of the relative
 //!   velocity by root finding on the analytic signal and moves the slider
 //!   in closed form between them.
-//! * `fixed_step.rs`: the fixed-step reference, first-order Moreau-Jean
-//!   ([`FixedStepEngine`]).
+//! * `fixed_step/`: the fixed-step reference, first-order Moreau-Jean
+//!   ([`FixedStepEngine`]), for a prescribed rod and, in `driven.rs` and
+//!   `rod.rs`, for a rod driven by a voltage.
 //! * `contact.rs`: the friction law both share: the band of `a_R`, the mode
 //!   a relative velocity leads to, the event a change of mode is, and the
 //!   segment handed to observers. Each engine only finds *when* a change

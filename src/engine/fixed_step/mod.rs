@@ -117,15 +117,29 @@
 //! rod, as in the event engine: that decision, the event kind of a mode
 //! change and the segments come from the shared [contact law](super::contact);
 //! the step law above is the scheme's own.
+//!
+//! ## A driven rod
+//! [`FixedStepEngine::driven`] replaces the signal by a rod driven by a
+//! voltage (docs/model.md section 16), on the same grid: `rod.rs` is one
+//! step of the rod's equation (trapezoidal rule, friction of the step's
+//! mode held constant over it) coupled to the slider, `driven.rs` the walk
+//! through a period, with the rod's state carried from period to period.
+//! The step law above decides the mode with `a_req` taken from the coupled
+//! step; for a prescribed rod nothing changes.
+
+mod driven;
+mod rod;
 
 use super::contact::{Contact, transition};
 use super::{
     Direction, Event, EventKind, Kinematics, Mode, PeriodEngine, PeriodStart, WorkCounters,
 };
 use super::{Observer, PeriodEnd};
+use crate::actuator::DrivenRod;
 use crate::error::SimulationError;
 use crate::motor::Motor;
 use crate::signal::{RodState, Signal};
+use driven::Driven;
 
 /// Settings of the fixed-step reference.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -167,6 +181,9 @@ pub struct FixedStepEngine<'s> {
     rod_at_end: RodState,
     last_uncertainty: f64,
     counters: WorkCounters,
+    /// The driven rod and the state it carries from period to period
+    /// (`driven.rs`); `None` for a prescribed rod.
+    driven: Option<Box<Driven>>,
 }
 
 /// Mutable state of the walk through one period.
@@ -215,7 +232,39 @@ impl<'s> FixedStepEngine<'s> {
             rod_at_end: signal.state_before(period),
             last_uncertainty: 0.0,
             counters: WorkCounters::default(),
+            driven: None,
         }
+    }
+
+    /// Prepares the engine for a rod driven by a voltage (`driven.rs`,
+    /// docs/model.md section 16): `signal` is the scene's signal the
+    /// voltage was designed for. It gives the grid, the scales (the
+    /// zero-velocity tolerance) and [`PeriodEngine::signal`]; the rod
+    /// itself moves by its own equation, starts at rest at `x_R = 0` in
+    /// period 1 and carries its state from period to period
+    /// ([`PeriodEngine::carries_rod_state`]). The rod never jumps, even
+    /// where the signal would.
+    ///
+    /// # Panics
+    /// If `options.steps_per_harmonic` is 0 (as [`FixedStepEngine::new`]).
+    pub fn driven(
+        signal: &'s Signal,
+        motor: &Motor,
+        rod: &DrivenRod,
+        options: FixedStepOptions,
+    ) -> Self {
+        let mut engine = Self::new(signal, motor, options);
+        engine.inner_jump = None;
+        engine.jump_at_start = false;
+        engine.driven = Some(Box::new(Driven::new(rod, motor, engine.h)));
+        engine
+    }
+
+    /// The driven rod's position and velocity at the end of the last
+    /// simulated period (at rest at `x_R = 0` before the first); `None` for
+    /// a prescribed rod.
+    pub fn rod_state(&self) -> Option<Kinematics> {
+        self.driven.as_ref().map(|d| d.rod_state())
     }
 
     /// Steps per period `N = n x steps_per_harmonic` for a signal with `n`
@@ -262,15 +311,33 @@ impl<'s> FixedStepEngine<'s> {
     #[inline]
     fn step_law(&self, mode: Mode, v: f64, v_rod_end: f64, h: f64) -> (Mode, f64) {
         let a_req = (v_rod_end - v) / h;
+        let c = &self.contact;
+        let forward = v + h * c.a_forward;
+        let backward = v + h * c.a_backward;
+        let relative = [v_rod_end - forward, v_rod_end - backward];
+        match self.choose(mode, a_req, relative, h) {
+            Mode::Stick => (Mode::Stick, v_rod_end),
+            m @ Mode::Slip(Direction::Forward) => (m, forward),
+            m @ Mode::Slip(Direction::Backward) => (m, backward),
+        }
+    }
+
+    /// The decision of the step law (module doc) from the mode at the step
+    /// start, the acceleration `a_req` a stuck slider would need over the
+    /// step and the relative velocities `[forward, backward]` the step
+    /// would end with in forward and in backward slip.
+    #[inline]
+    fn choose(&self, mode: Mode, a_req: f64, relative: [f64; 2], h: f64) -> Mode {
         // a_req is a difference quotient of velocities: within tol_v / h of
         // the band it counts as inside (a_R = a_0 exactly, as in the ideal
         // signal at kappa = 1, must not slip on rounding).
         let c = &self.contact;
         let tol_a = c.tol_v / h;
         let (a_plus, a_minus) = (c.a_plus + tol_a, c.a_minus - tol_a);
-        let forward = (Mode::Slip(Direction::Forward), v + h * c.a_forward);
-        let backward = (Mode::Slip(Direction::Backward), v + h * c.a_backward);
-        let stick = (Mode::Stick, v_rod_end);
+        let (forward, backward) = (
+            Mode::Slip(Direction::Forward),
+            Mode::Slip(Direction::Backward),
+        );
         match mode {
             Mode::Stick => {
                 if a_req > a_plus {
@@ -278,25 +345,25 @@ impl<'s> FixedStepEngine<'s> {
                 } else if a_req < a_minus {
                     backward
                 } else {
-                    stick
+                    Mode::Stick
                 }
             }
             Mode::Slip(Direction::Forward) => {
-                if v_rod_end - forward.1 > 0.0 {
+                if relative[0] > 0.0 {
                     forward
                 } else if a_req < a_minus {
                     backward
                 } else {
-                    stick
+                    Mode::Stick
                 }
             }
             Mode::Slip(Direction::Backward) => {
-                if v_rod_end - backward.1 < 0.0 {
+                if relative[1] < 0.0 {
                     backward
                 } else if a_req > a_plus {
                     forward
                 } else {
-                    stick
+                    Mode::Stick
                 }
             }
         }
@@ -307,11 +374,11 @@ impl<'s> FixedStepEngine<'s> {
     /// the whole step. A stuck slider follows `a_R`, whose mean over the step
     /// is `a_req`; a step that ends in stick ends exactly on the rod
     /// velocity, so it adds no velocity error.
-    fn acceleration_jump(&self, old: Mode, new: Mode, v: f64, v_rod_end: f64, h: f64) -> f64 {
+    fn acceleration_jump(&self, old: Mode, new: Mode, a_req: f64) -> f64 {
         let slip = |d: Direction| self.contact.slip_acceleration(d);
         match (old, new) {
             (_, Mode::Stick) => 0.0,
-            (Mode::Stick, Mode::Slip(d)) => (slip(d) - (v_rod_end - v) / h).abs(),
+            (Mode::Stick, Mode::Slip(d)) => (slip(d) - a_req).abs(),
             (Mode::Slip(a), Mode::Slip(b)) => (slip(b) - slip(a)).abs(),
         }
     }
@@ -328,9 +395,24 @@ impl<'s> FixedStepEngine<'s> {
     /// Hands the open segment `[segment_start, tau]` to the observer and
     /// opens the next one at `tau`.
     fn close_segment<O: Observer>(&self, walk: &mut Walk, observer: &mut O) {
+        self.close_segment_with(walk, observer, |w| {
+            [
+                self.signal.state(w.segment_start),
+                self.signal.state_before(w.tau),
+            ]
+        });
+    }
+
+    /// [`Self::close_segment`] with the rod at the segment's start and end
+    /// from `rod` (asked only if the observer wants the segment).
+    fn close_segment_with<O: Observer>(
+        &self,
+        walk: &mut Walk,
+        observer: &mut O,
+        rod: impl FnOnce(&Walk) -> [RodState; 2],
+    ) {
         if walk.tau > walk.segment_start && observer.wants_segments() {
-            let rod_start = self.signal.state(walk.segment_start);
-            let rod_end = self.signal.state_before(walk.tau);
+            let [rod_start, rod_end] = rod(walk);
             let slider_end = Kinematics {
                 x: walk.x,
                 v: walk.v,
@@ -448,7 +530,7 @@ impl<'s> FixedStepEngine<'s> {
             steps += 1;
             if new_mode != walk.mode {
                 walk.uncertainty +=
-                    h * self.acceleration_jump(walk.mode, new_mode, walk.v, v_rod_end, h);
+                    h * self.acceleration_jump(walk.mode, new_mode, (v_rod_end - walk.v) / h);
                 if new_mode == Mode::Stick {
                     walk.derivative = 0.0;
                 }
@@ -500,6 +582,11 @@ impl PeriodEngine for FixedStepEngine<'_> {
         start: PeriodStart,
         observer: &mut O,
     ) -> Result<PeriodEnd, SimulationError> {
+        if let Some(mut driven) = self.driven.take() {
+            let end = self.run_driven_period(&mut driven, period, start, observer);
+            self.driven = Some(driven);
+            return Ok(end);
+        }
         self.run_period_impl(period, start, observer)
     }
 
@@ -516,6 +603,11 @@ impl PeriodEngine for FixedStepEngine<'_> {
     /// rest decides which one is the steady state.
     fn steady_state_from_transient(&self) -> bool {
         true
+    }
+
+    /// True for a driven rod ([`FixedStepEngine::driven`]).
+    fn carries_rod_state(&self) -> bool {
+        self.driven.is_some()
     }
 
     /// The velocity error the grid introduced in the last period, `sum h

@@ -1,0 +1,212 @@
+//! The fixed-step reference with a driven rod (docs/model.md section 16):
+//! the rod obeys the actuator's equation under the voltage, with the
+//! friction acting back on it (or not, `reaction = false`), and carries its
+//! state from period to period.
+//!
+//! ```text
+//! rod:    M a_R + d v_R + c x_R = alpha u(t) - r F_f
+//! slider: m_s a_S = F_f + m_s g_t
+//! slip:   F_f = mu_d F_c sign(v_R - v_S)
+//! stick:  v_S = v_R, held while |F_f| <= mu_0 F_c
+//! ```
+//!
+//! ## Scheme
+//! The grid is the prescribed rod's (module [`super`]): `N` steps of
+//! `h = T / N` per period of the scene's signal, node `k` at `tau_k = k h`.
+//! Each step (`rod.rs`) integrates the rod by the trapezoidal rule with
+//! the voltage evaluated exactly at the two nodes and the friction force of
+//! the step's mode held constant over it, and moves the slider with that
+//! force. The mode of a step is decided by the prescribed rod's step law
+//! (Moreau type, at the step end) with
+//!
+//! ```text
+//! a_req = (V - v_S0) / h,
+//! ```
+//!
+//! `V` the common end velocity of rod and slider in stick (the impulse
+//! balance of the two bodies over the step): the mean over the step of the
+//! stuck system's acceleration
+//! `a_st = (alpha u + m_s g_t - d v_R - c x_R) / (M + m_s)` for a slider
+//! stuck at the step start, and, for a slider whose `v_rel` reaches zero in
+//! the step, the same mixture of the old slip and `a_st` as the prescribed
+//! rod's `a_req`. Without reaction the rod obeys
+//! `M a_R + d v_R + c x_R = alpha u` in every mode and `V` is its own end
+//! velocity, which is the prescribed rod's scheme with the integrated rod in
+//! place of the signal.
+//!
+//! **Order.** Within a mode the rod's step is second order and the slider's
+//! exact (constant acceleration in slip, the rod's velocity at the nodes in
+//! stick). A step holding an event is given wholly to the new mode, as for
+//! the prescribed rod: the slider's velocity is off by `O(h)` after it, and
+//! with reaction the rod's too (a slider coming to rest within the step
+//! shares its remaining relative momentum `m_s v_rel = O(h)` with the rod).
+//! With a bounded number of events per period the scheme is first order,
+//! and second order for a motion without events (a slider that never
+//! slips, or the rod without reaction).
+//!
+//! ## Periods
+//! Period 1 called with `mode: None` starts from rest: rod at `x_R = 0`,
+//! `v_R = 0`, slider at rest on it, its mode from the band of `a_st(0)`.
+//! Every other call continues from the state the previous call ended in:
+//! rod position and velocity, the slider's velocity and mode. The slider's
+//! velocity is the engine's own; `start.velocity` (and `start.mode`, when
+//! given) are expected to be the previous period's end, which a debug
+//! build asserts. The rod never jumps, whatever the signal does.
+//!
+//! ## What it reports
+//! Segments, events and period ends as for the prescribed rod, with the
+//! rod kinematics at the segment ends the integrated rod's.
+//! [`PeriodEnd::map_derivative`] is the derivative of the scheme's own
+//! period map with respect to the slider's velocity at the period start,
+//! the rod's start state held: carried through every step with the step's
+//! mode held (`RodStep::tangent`), exact almost everywhere. Without
+//! reaction it is 0 if the slider stuck in the period, else 1, as for the
+//! prescribed rod; with reaction a stick step keeps the share
+//! `m_s / (D + m_s)` of it in the common velocity, and the rod passes it on.
+//! The analysis does not take it for the slider's period map (the rod's
+//! state is part of the boundary state); it is information.
+//! [`PeriodEngine::last_velocity_uncertainty`](super::PeriodEngine::last_velocity_uncertainty)
+//! is `h sum |Delta a|` over the period's stick -> slip transitions and
+//! reversals, with `a_req` for the stuck slider's acceleration: the
+//! slider's share of the grid's error, to first order.
+
+use super::rod::{RodStep, Tangent};
+use super::{FixedStepEngine, Walk};
+use crate::actuator::{DrivenRod, Load};
+use crate::engine::contact::transition;
+use crate::engine::{Kinematics, Mode, Observer, PeriodEnd, PeriodStart};
+use crate::motor::Motor;
+use crate::signal::RodState;
+
+/// A driven rod on the engine's grid, and the state it carries.
+#[derive(Debug, Clone)]
+pub(super) struct Driven {
+    step: RodStep,
+    /// The stuck system's acceleration `a_st` at rest at phase 0 (m/s^2):
+    /// the mode a period 1 starts in.
+    at_rest: f64,
+    /// The state the last period ended in; `None` before the first.
+    carry: Option<Carry>,
+}
+
+/// The boundary state of a driven rod's period.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Carry {
+    rod: Kinematics,
+    slider: f64,
+    mode: Mode,
+}
+
+impl Driven {
+    /// `rod` under `motor`'s slider on a grid of step `h` (s).
+    pub(super) fn new(rod: &DrivenRod, motor: &Motor, h: f64) -> Self {
+        Self {
+            step: RodStep::new(rod, motor, h),
+            at_rest: rod.acceleration(Load::Stuck, 0.0, 0.0, 0.0),
+            carry: None,
+        }
+    }
+
+    /// The rod at the end of the last period (at rest before the first).
+    pub(super) fn rod_state(&self) -> Kinematics {
+        self.carry.map_or(Kinematics::default(), |c| c.rod)
+    }
+}
+
+/// A rod state for a segment end (a segment carries no acceleration).
+fn rod_state(rod: Kinematics) -> RodState {
+    RodState {
+        x: rod.x,
+        v: rod.v,
+        a: 0.0,
+    }
+}
+
+impl FixedStepEngine<'_> {
+    /// One period of `driven` (module doc).
+    pub(super) fn run_driven_period<O: Observer>(
+        &mut self,
+        driven: &mut Driven,
+        period: u64,
+        start: PeriodStart,
+        observer: &mut O,
+    ) -> PeriodEnd {
+        let step = &driven.step;
+        let carry = match driven.carry {
+            Some(carry) if period != 1 || start.mode.is_some() => {
+                debug_assert_eq!(start.velocity, carry.slider, "not the last period's end");
+                debug_assert!(start.mode.is_none_or(|m| m == carry.mode));
+                carry
+            }
+            _ => Carry {
+                rod: Kinematics::default(),
+                slider: 0.0,
+                mode: self.contact.band(driven.at_rest).mode_at_rest(),
+            },
+        };
+        let mut walk = Walk {
+            period,
+            tau: 0.0,
+            x: 0.0,
+            v: carry.slider,
+            mode: carry.mode,
+            derivative: 1.0,
+            uncertainty: 0.0,
+            segment_start: 0.0,
+            segment_slider: Kinematics {
+                x: 0.0,
+                v: carry.slider,
+            },
+        };
+        let h = self.h;
+        let mut rod = carry.rod;
+        let mut segment_rod = rod;
+        let mut tangent = Tangent::START;
+        let mut f0 = step.force(0.0);
+        for k in 0..self.steps {
+            let next = self.node(k + 1);
+            let f1 = step.force(if next >= self.period { 0.0 } else { next });
+            let ends = step.ends(rod, walk.v, [f0, f1]);
+            let new_mode = self.choose(walk.mode, ends.a_req, ends.relative(), h);
+            if new_mode != walk.mode {
+                walk.uncertainty += h * self.acceleration_jump(walk.mode, new_mode, ends.a_req);
+                let seg = [rod_state(segment_rod), rod_state(rod)];
+                self.close_segment_with(&mut walk, observer, |_| seg);
+                segment_rod = rod;
+                let kind = transition(walk.mode, new_mode, false);
+                walk.mode = new_mode;
+                if let Some(kind) = kind {
+                    self.emit(&walk, kind, observer);
+                }
+            }
+            let [v_rod, v_slider] = ends.of(new_mode);
+            tangent = step.tangent(new_mode, tangent);
+            rod.x += 0.5 * h * (rod.v + v_rod);
+            rod.v = v_rod;
+            walk.x += 0.5 * h * (walk.v + v_slider);
+            walk.v = v_slider;
+            walk.tau = next;
+            f0 = f1;
+        }
+        walk.tau = self.period;
+        let seg = [rod_state(segment_rod), rod_state(rod)];
+        self.close_segment_with(&mut walk, observer, |_| seg);
+        self.counters.evaluations += self.steps;
+        self.counters.periods += 1;
+        self.last_uncertainty = walk.uncertainty;
+        driven.carry = Some(Carry {
+            rod,
+            slider: walk.v,
+            mode: walk.mode,
+        });
+        let end = PeriodEnd {
+            period,
+            step: walk.x,
+            velocity: walk.v,
+            mode: walk.mode,
+            map_derivative: tangent.slider,
+        };
+        observer.period_end(&end);
+        end
+    }
+}
