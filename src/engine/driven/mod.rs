@@ -93,6 +93,15 @@ pub struct DrivenEngine<'s> {
     last_uncertainty: f64,
 }
 
+/// The closed forms of `mode` among the three modes'.
+fn functions_of(modes: &[ModeFunctions; 3], mode: Mode) -> &ModeFunctions {
+    match load_of(mode) {
+        Load::SlipForward => &modes[0],
+        Load::SlipBackward => &modes[1],
+        Load::Stuck => &modes[2],
+    }
+}
+
 /// The load a mode puts on the rod.
 fn load_of(mode: Mode) -> Load {
     match mode {
@@ -136,11 +145,7 @@ impl<'s> DrivenEngine<'s> {
     }
 
     fn functions(&self, mode: Mode) -> &ModeFunctions {
-        match load_of(mode) {
-            Load::SlipForward => &self.modes[0],
-            Load::SlipBackward => &self.modes[1],
-            Load::Stuck => &self.modes[2],
-        }
+        functions_of(&self.modes, mode)
     }
 
     /// The band the stuck system's acceleration lies in at phase `tau` for
@@ -246,7 +251,7 @@ impl<'s> DrivenEngine<'s> {
         walk: &mut Walk,
         observer: &mut O,
     ) -> Result<(), SimulationError> {
-        let functions = self.functions(Mode::Stick);
+        let functions = functions_of(&self.modes, Mode::Stick);
         let span = self.period - walk.tau;
         let exit = functions.stick_exit(
             walk.tau,
@@ -296,7 +301,7 @@ impl<'s> DrivenEngine<'s> {
         observer: &mut O,
     ) -> Result<(), SimulationError> {
         let a_s = self.contact.slip_acceleration(dir);
-        let functions = self.functions(Mode::Slip(dir));
+        let functions = functions_of(&self.modes, Mode::Slip(dir));
         let span = self.period - walk.tau;
         let zero = functions.slip_zero(
             walk.tau,
