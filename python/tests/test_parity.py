@@ -3,10 +3,9 @@
 Every expected value here is the output of the ``stickslip`` binary
 (an independent path: its own argument parsing, file reading and
 printing), parsed with Python's ``json`` and ``float`` (correctly
-rounded), and compared bit for bit. The binary is found at
-``$STICKSLIP_BIN``, else ``$CARGO_TARGET_DIR/release/stickslip``, else
-``target/release/stickslip`` at the repository's top; build it with
-``cargo build --release``. Without it these tests fail: they never skip.
+rounded), and compared bit for bit. The binary is found as
+``cli_binary`` says (build it with ``cargo build --release``). Without it
+these tests fail: they never skip.
 """
 
 from __future__ import annotations
@@ -14,9 +13,7 @@ from __future__ import annotations
 import csv
 import json
 import math
-import os
 import struct
-import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -24,32 +21,10 @@ import pandas as pd
 import pytest
 
 import stickslip
+from cli_binary import ROOT, cli
 
-ROOT = Path(__file__).resolve().parents[2]
 SCENES = sorted((ROOT / "examples" / "scenes").glob("*.toml"))
 TIMING = {"wall_time_s", "setup_time_s", "simulation_time_s"}
-
-
-def binary() -> Path:
-    if os.environ.get("STICKSLIP_BIN"):
-        path = Path(os.environ["STICKSLIP_BIN"])
-    else:
-        target = Path(os.environ.get("CARGO_TARGET_DIR") or ROOT / "target")
-        path = target / "release" / "stickslip"
-    assert path.is_file(), (
-        f"the stickslip binary is not at {path}: run `cargo build --release` "
-        "(or set STICKSLIP_BIN)"
-    )
-    return path
-
-
-def cli(*args: object, ok: bool = True) -> subprocess.CompletedProcess:
-    p = subprocess.run(
-        [str(binary()), *map(str, args)], capture_output=True, text=True, timeout=600
-    )
-    if ok:
-        assert p.returncode == 0, p.stderr
-    return p
 
 
 def cli_error(*args: object) -> str:

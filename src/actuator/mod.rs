@@ -15,6 +15,8 @@
 //! * [`Voltage`] (`voltage.rs`): the voltage, designed as the inverse of
 //!   (23) for the scene's signal or given.
 //! * `response.rs`: the rod's closed-form motion in each mode.
+//! * [`VoltageDescription`] (`description.rs`): the designed voltage for a
+//!   signal generator, as `stickslip signal --voltage` prints it.
 //! * [`DrivenRod`]: all of it built for one motor, what the engines use.
 //!
 //! Without the reaction the rod obeys (23) in every mode, and the slider
@@ -26,9 +28,11 @@
 //! so the law of docs/model.md section 1 carries over with `a_R`
 //! replaced by `a_R^stick`.
 
+mod description;
 mod response;
 mod voltage;
 
+pub use description::{VoltageDescription, VoltageHarmonic};
 pub(crate) use response::ModeResponse;
 pub use voltage::Voltage;
 

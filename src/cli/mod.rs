@@ -64,7 +64,9 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Join sweep outputs (shards) into one file, sorted by case.
     Merge(sweep::MergeArgs),
-    /// Print the rod signal exactly as simulated (text, JSON, MATLAB, Python).
+    /// Print the rod signal exactly as simulated, or with --voltage the
+    /// actuator voltage that moves the rod along it (text, JSON, MATLAB,
+    /// Python).
     Signal(signal::SignalArgs),
     /// Compare a user's fixed-step results (CSV, MAT) with the exact solution.
     Compare(compare::CompareArgs),
