@@ -144,18 +144,6 @@ impl Voltage {
     pub fn rms(&self) -> f64 {
         (0.5 * self.harmonics().map(|(p, q)| p * p + q * q).sum::<f64>()).sqrt()
     }
-
-    /// `max |C u'(t)|` and the RMS of `C u'`: the charging part of the
-    /// current (21) (A).
-    pub(crate) fn charging_rms(&self, capacitance: f64) -> f64 {
-        let w = self.omega();
-        let sum: f64 = self
-            .harmonics()
-            .enumerate()
-            .map(|(k, (p, q))| ((k + 1) as f64 * w).powi(2) * (p * p + q * q))
-            .sum();
-        capacitance * (0.5 * sum).sqrt()
-    }
 }
 
 #[cfg(test)]
@@ -197,8 +185,5 @@ mod tests {
         assert!((u.peak() - 120.0).abs() < 1e-10);
         // (33): 100 / sqrt(2).
         assert!((u.rms() - 100.0 / 2f64.sqrt()).abs() < 1e-12);
-        // d/dt of 100 sin(w t): amplitude 100 w; times C, RMS / sqrt 2.
-        let w = 2.0 * PI * 1000.0;
-        assert!((u.charging_rms(1e-6) - 1e-6 * 100.0 * w / 2f64.sqrt()).abs() < 1e-15);
     }
 }

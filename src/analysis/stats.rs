@@ -4,7 +4,7 @@
 //! `a_R`), sliding distance `integral |v_R - v_S| dt` (plus `|delta x_R|` at
 //! rod jumps) and time in stick.
 
-use crate::engine::{EventCounts, Mode, Segment};
+use crate::engine::{EventCounts, Mode, PeriodEngine, Segment};
 use crate::engine::{Observer, PeriodEnd};
 use crate::signal::{Partition, Signal};
 
@@ -71,6 +71,23 @@ impl StatsObserver {
             current: Self::fresh(),
             last: Self::fresh(),
         }
+    }
+
+    /// An observer for `engine`'s periods: an engine that carries a rod
+    /// state cuts its stick segments at the zeros of the rod's own
+    /// acceleration ([`PeriodEngine::carries_rod_state`]), so the
+    /// segment ends hold every velocity extremum and the signal's are not
+    /// used.
+    pub fn for_engine<E: PeriodEngine>(engine: &E, wanted: StatsWanted) -> Self {
+        let mut stats = Self::new(engine.signal(), StatsWanted {
+            smoothness: false,
+            ..wanted
+        });
+        stats.wanted = wanted;
+        if wanted.smoothness && !engine.carries_rod_state() {
+            stats.accel_zeros = Some(engine.signal().partition(0.0));
+        }
+        stats
     }
 
     fn fresh() -> PeriodStats {

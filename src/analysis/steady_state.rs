@@ -80,8 +80,8 @@ pub(crate) fn steady_state_at<E: PeriodEngine, O: Observer>(
     let before = engine.run_period(2, start, &mut ())?;
     // The regime and the error estimate need the stick and slip times and
     // the sliding distance of this one period, whatever else is wanted.
-    let mut stats = StatsObserver::new(
-        engine.signal(),
+    let mut stats = StatsObserver::for_engine(
+        &*engine,
         StatsWanted {
             stiction: true,
             slip_time: true,

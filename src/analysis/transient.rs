@@ -192,8 +192,8 @@ pub fn transient<E: PeriodEngine, O: Observer>(
     } = engine.signal().velocity_range();
     let period = engine.signal().period();
     let tol = options.transient_tolerance * v_scale;
-    let mut stats = StatsObserver::new(
-        engine.signal(),
+    let mut stats = StatsObserver::for_engine(
+        &*engine,
         StatsWanted {
             stiction: wanted.stiction,
             ..Default::default()

@@ -325,7 +325,9 @@ pub trait PeriodEngine {
     /// ended in (period 1 starts from rest), so the period map is not a
     /// function of the slider velocity: the motion from rest decides the
     /// steady state, and no search evaluates the map from a chosen
-    /// velocity.
+    /// velocity. It cuts its stick segments at the zeros of the rod's
+    /// own acceleration, so that a stuck slider's velocity extrema are
+    /// segment ends.
     fn carries_rod_state(&self) -> bool {
         false
     }

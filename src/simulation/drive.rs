@@ -232,8 +232,15 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                     ));
                 }
                 let before = engine.counters().periods;
-                let steady = orbit_steady(&mut engine, &transient, wanted, &mut trajectory)?;
+                let mut steady = orbit_steady(&mut engine, &transient, wanted, &mut trajectory)?;
                 map_evaluations += engine.counters().periods - before;
+                if rod_state {
+                    // No derivative of a one-dimensional map: the contraction
+                    // the start-up showed stands in for it in the error
+                    // estimate.
+                    steady.map_derivative =
+                        measured_contraction(&transient.boundary_velocities, signal.velocity_scale());
+                }
                 if transient.converged_by != Some(Convergence::Ratio) {
                     certificate.kind = CertificateKind::Orbit;
                     settled = Some((steady, Some(transient)));
@@ -402,6 +409,26 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         steady,
         drive,
     })))
+}
+
+/// The contraction per period the start-up showed near its limit: the
+/// largest ratio of successive changes of the boundary velocity over the
+/// last 16 periods whose changes lie well above rounding and below the
+/// start-up's large moves (between `1e-12` and `1e-4` of the velocity
+/// scale); 1 (no contraction shown, no bound) where there are none.
+fn measured_contraction(boundary: &[f64], scale: f64) -> f64 {
+    let changes: Vec<f64> = boundary.windows(2).map(|w| (w[1] - w[0]).abs()).collect();
+    let usable = |c: f64| c > 1e-12 * scale && c < 1e-4 * scale;
+    let ratios: Vec<f64> = changes
+        .windows(2)
+        .filter(|c| usable(c[0]) && usable(c[1]))
+        .map(|c| c[1] / c[0])
+        .collect();
+    let last = &ratios[ratios.len().saturating_sub(16)..];
+    if last.is_empty() {
+        return 1.0;
+    }
+    last.iter().copied().fold(0.0, f64::max).min(1.0)
 }
 
 /// What is known about a start-up without an established limit: its last

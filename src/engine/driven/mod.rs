@@ -264,26 +264,38 @@ impl<'s> DrivenEngine<'s> {
             StickExit::PeriodEnd => span,
             StickExit::Leaves { s, .. } => s,
         };
-        let rod_end = functions.rod_at(walk.tau, walk.rod, s_end);
         let end_tau = if s_end >= span { self.period } else { walk.tau + s_end };
-        if observer.wants_segments() && end_tau > walk.tau {
-            let slider = [
-                Kinematics {
-                    x: walk.x,
-                    v: walk.rod.v,
-                },
-                Kinematics {
-                    x: walk.x + (rod_end.x - walk.rod.x),
-                    v: rod_end.v,
-                },
-            ];
-            let segment = self.segment(walk, end_tau, Mode::Stick, slider, rod_end);
-            observer.segment(&segment, self.signal);
+        // Observers get the stick phase cut at the zeros of the rod's
+        // acceleration, so that the slider's velocity extrema are segment
+        // ends (the contract of `carries_rod_state`).
+        let cuts = if observer.wants_segments() {
+            functions.acceleration_zeros(walk.tau, walk.rod, s_end)
+        } else {
+            Vec::new()
+        };
+        let (tau0, rod0) = (walk.tau, walk.rod);
+        for s in cuts.into_iter().chain([s_end]) {
+            let rod_end = functions.rod_at(tau0, rod0, s);
+            let end = if s == s_end { end_tau } else { tau0 + s };
+            if observer.wants_segments() && end > walk.tau {
+                let slider = [
+                    Kinematics {
+                        x: walk.x,
+                        v: walk.rod.v,
+                    },
+                    Kinematics {
+                        x: walk.x + (rod_end.x - walk.rod.x),
+                        v: rod_end.v,
+                    },
+                ];
+                let segment = self.segment(walk, end, Mode::Stick, slider, rod_end);
+                observer.segment(&segment, self.signal);
+            }
+            walk.x += rod_end.x - walk.rod.x;
+            walk.v = rod_end.v;
+            walk.rod = rod_end;
+            walk.tau = end;
         }
-        walk.x += rod_end.x - walk.rod.x;
-        walk.v = rod_end.v;
-        walk.rod = rod_end;
-        walk.tau = end_tau;
         if let StickExit::Leaves { to, .. } = exit {
             walk.mode = Mode::Slip(to);
             walk.departure = true;

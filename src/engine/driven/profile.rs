@@ -20,7 +20,7 @@
 use super::segment::ModeFunctions;
 use crate::actuator::DrivenRod;
 use crate::engine::{Mode, Segment};
-use crate::numerics::exp_trig::{Crossing, DampedOscillator, ExpTrig, Start};
+use crate::numerics::exp_trig::{DampedOscillator, ExpTrig, Start};
 use crate::numerics::quadrature::GaussLegendre;
 use crate::signal::FourierSignal;
 
@@ -135,9 +135,7 @@ fn extremum(dg: &ExpTrig, span: f64, g: &impl Fn(f64) -> f64) -> f64 {
     let mut start = Start::Clear;
     while let Some(c) = dg.first_zero(from, span, tol, start) {
         start = Start::AfterEvent;
-        let s = match c {
-            Crossing::Transversal { s, .. } | Crossing::Tangency { s } => s,
-        };
+        let s = c.s();
         best = best.max(g(s).abs());
         if s <= from {
             break;

@@ -129,6 +129,26 @@ impl ModeFunctions {
         }
     }
 
+    /// The zeros of the rod's acceleration in `(0, span)` after `tau`
+    /// (this being the stick mode's functions): where a stuck slider's
+    /// velocity has its extrema.
+    pub(super) fn acceleration_zeros(&self, tau: f64, rod: Kinematics, span: f64) -> Vec<f64> {
+        let f = self.band_function(tau, rod.x, rod.v, 0.0);
+        let tol = f.eval_error_bound(span)[0];
+        let mut zeros = Vec::new();
+        let (mut from, mut start) = (0.0, Start::Clear);
+        while let Some(c) = f.first_zero(from, span, tol, start) {
+            let s = c.s();
+            if s <= from || s >= span {
+                break;
+            }
+            zeros.push(s);
+            from = s;
+            start = Start::AfterEvent;
+        }
+        zeros
+    }
+
     /// `v_rel(s) = v_R(tau + s) - v_S - a_s s`.
     fn v_rel(&self, tau: f64, rod: Kinematics, (v_s, a_s): (f64, f64)) -> ExpTrig {
         let free = self.free(tau, rod);

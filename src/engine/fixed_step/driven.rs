@@ -163,6 +163,7 @@ impl FixedStepEngine<'_> {
         let mut segment_rod = rod;
         let mut tangent = Tangent::START;
         let mut f0 = step.force(0.0);
+        let mut last_dv = 0.0;
         for k in 0..self.steps {
             let next = self.node(k + 1);
             let f1 = step.force(if next >= self.period { 0.0 } else { next });
@@ -180,6 +181,15 @@ impl FixedStepEngine<'_> {
                 }
             }
             let [v_rod, v_slider] = ends.of(new_mode);
+            // A stuck slider's velocity extremum at this node ends the
+            // segment (the contract of `carries_rod_state`).
+            let dv = v_rod - rod.v;
+            if new_mode == Mode::Stick && last_dv * dv < 0.0 && observer.wants_segments() {
+                let seg = [rod_state(segment_rod), rod_state(rod)];
+                self.close_segment_with(&mut walk, observer, |_| seg);
+                segment_rod = rod;
+            }
+            last_dv = dv;
             tangent = step.tangent(new_mode, tangent);
             rod.x += 0.5 * h * (rod.v + v_rod);
             rod.v = v_rod;
