@@ -192,7 +192,10 @@
 //! `O(n)` per evaluation. On random functions of up to 15 harmonics with
 //! an oscillator (`examples/exp_trig_roots.rs`), a search from one event
 //! to the next takes about 17 evaluations, 7 pieces and 2 halvings, about
-//! 3 µs; [`Work`] counts them for the caller.
+//! 3 µs; [`Work`] counts them for the caller. Where there is no event the
+//! walk covers `(s_a, s_b]` in pieces of about `1/Ω` (longer where `|f|`
+//! stays well above the band), so its cost grows with `Ω (s_b - s_a)`:
+//! the caller bounds the interval (the engine, by a period).
 
 use super::bracket;
 
