@@ -195,7 +195,7 @@
 //! 3 µs; [`Work`] counts them for the caller. Where there is no event the
 //! walk covers `(s_a, s_b]` in pieces of about `1/Ω` (longer where `|f|`
 //! stays well above the band), so its cost grows with `Ω (s_b - s_a)`:
-//! the caller bounds the interval (the engine, by a period).
+//! the caller keeps the interval short (a segment, at most a period).
 
 use super::bracket;
 
