@@ -119,8 +119,16 @@ fn the_reaction_changes_v_inf_as_the_fixed_step_reference_does() {
     let change = on / off.indicators.v_inf - 1.0;
     let reference_change = reference / off.indicators.v_inf - 1.0;
     eprintln!("change {change:e}, reference {reference_change:e}");
-    assert!(change.abs() > 1e-3, "the reaction changes v_inf: {change:e}");
-    assert_rel(change, reference_change, 0.05, "change of v_inf by the reaction");
+    assert!(
+        change.abs() > 1e-3,
+        "the reaction changes v_inf: {change:e}"
+    );
+    assert_rel(
+        change,
+        reference_change,
+        0.05,
+        "change of v_inf by the reaction",
+    );
 }
 
 /// A scene that asks for a driven rod where none can be driven is refused
@@ -131,7 +139,9 @@ fn a_driven_rod_needs_an_actuator_and_a_continuous_signal_from_rest() {
                 transfer_factor = 1.985\ncapacitance = 800e-9\n";
     let cases = [
         (
-            format!("{base}rod = \"driven\"\n[signal]\nkind = \"ideal\"\nstroke = 25e-6\nkappa = 1.0\n"),
+            format!(
+                "{base}rod = \"driven\"\n[signal]\nkind = \"ideal\"\nstroke = 25e-6\nkappa = 1.0\n"
+            ),
             "signal.kind",
         ),
         (

@@ -99,7 +99,8 @@ mod tests {
     #[test]
     fn particular_solution_satisfies_the_mode_equation() {
         let actuator = ActuatorParams::default();
-        let voltage = Voltage::from_amplitudes(9448.8, &[120.0, 40.0, 5.0], &[0.2, -1.0, 2.5], 30.0);
+        let voltage =
+            Voltage::from_amplitudes(9448.8, &[120.0, 40.0, 5.0], &[0.2, -1.0, 2.5], 30.0);
         let mass = actuator.mass + 1.4e-3;
         let force = 0.157;
         let r = ModeResponse::new(&actuator, mass, force, &voltage);
@@ -128,7 +129,12 @@ mod tests {
         for i in 0..20 {
             let tau = signal.period() * i as f64 / 20.0;
             let (a, b) = (signal.state(tau), r.particular.state(tau));
-            assert!((a.x - b.x).abs() <= 1e-15 * 25e-6, "x {} against {}", a.x, b.x);
+            assert!(
+                (a.x - b.x).abs() <= 1e-15 * 25e-6,
+                "x {} against {}",
+                a.x,
+                b.x
+            );
             assert!((a.v - b.v).abs() <= 1e-14, "v {} against {}", a.v, b.v);
         }
     }

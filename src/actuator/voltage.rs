@@ -69,9 +69,22 @@ impl Voltage {
     /// A voltage given by frequency (Hz), amplitudes `u_k` (V), phases
     /// `phi_k` (rad) and offset (V): `u = u_0 + sum_k u_k sin(k w t + phi_k)`.
     /// The caller has validated the values.
-    pub fn from_amplitudes(frequency: f64, amplitudes: &[f64], phases: &[f64], offset: f64) -> Self {
-        let cos = amplitudes.iter().zip(phases).map(|(u, p)| u * p.sin()).collect();
-        let sin = amplitudes.iter().zip(phases).map(|(u, p)| u * p.cos()).collect();
+    pub fn from_amplitudes(
+        frequency: f64,
+        amplitudes: &[f64],
+        phases: &[f64],
+        offset: f64,
+    ) -> Self {
+        let cos = amplitudes
+            .iter()
+            .zip(phases)
+            .map(|(u, p)| u * p.sin())
+            .collect();
+        let sin = amplitudes
+            .iter()
+            .zip(phases)
+            .map(|(u, p)| u * p.cos())
+            .collect();
         Self {
             period: 1.0 / frequency,
             offset,
@@ -166,8 +179,7 @@ mod tests {
         for i in 0..50 {
             let tau = signal.period() * i as f64 / 50.0;
             let st = signal.state(tau);
-            let lhs =
-                actuator.mass * st.a + actuator.damping * st.v + actuator.stiffness * st.x;
+            let lhs = actuator.mass * st.a + actuator.damping * st.v + actuator.stiffness * st.x;
             let rhs = actuator.transfer_factor * u.value(tau)[0];
             let scale = actuator.stiffness * 30e-6;
             assert!((lhs - rhs).abs() <= 1e-13 * scale, "{lhs} against {rhs}");

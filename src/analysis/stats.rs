@@ -79,10 +79,13 @@ impl StatsObserver {
     /// segment ends hold every velocity extremum and the signal's are not
     /// used.
     pub fn for_engine<E: PeriodEngine>(engine: &E, wanted: StatsWanted) -> Self {
-        let mut stats = Self::new(engine.signal(), StatsWanted {
-            smoothness: false,
-            ..wanted
-        });
+        let mut stats = Self::new(
+            engine.signal(),
+            StatsWanted {
+                smoothness: false,
+                ..wanted
+            },
+        );
         stats.wanted = wanted;
         if wanted.smoothness && !engine.carries_rod_state() {
             stats.accel_zeros = Some(engine.signal().partition(0.0));

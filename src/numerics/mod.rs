@@ -16,16 +16,11 @@
 pub(crate) mod bracket;
 mod compensated;
 pub(crate) mod contour;
-// Its caller, the engine's rod driven through a damped actuator, is not in
-// the crate yet; its tests and `examples/exp_trig_roots.rs` use it.
-#[cfg_attr(not(test), expect(dead_code))]
-mod exp_trig;
+pub(crate) mod exp_trig;
 pub(crate) mod line_fit;
 pub(crate) mod quadrature;
 pub(crate) mod taylor;
 pub(crate) mod trig_roots;
 
 pub use compensated::CompensatedSum;
-#[cfg_attr(not(test), expect(unused_imports))]
-pub(crate) use exp_trig::{Crossing, DampedOscillator, ExpTrig, Start, Work};
 pub use trig_roots::{LevelRoots, RootsAndEnvelope, TrigPoly, WithDerivative, WithTwoDerivatives};

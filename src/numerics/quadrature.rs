@@ -97,7 +97,10 @@ mod tests {
             let f = |x: f64| x.powi(d) + if d >= 1 { x.powi(d - 1) } else { 0.0 };
             let exact = 1.0 / (d + 1) as f64 + if d >= 1 { 1.0 / d as f64 } else { 0.0 };
             let got = g.integrate(f, 0.0, 1.0, 1);
-            assert!((got - exact).abs() < 1e-14, "n = {n}: {got} against {exact}");
+            assert!(
+                (got - exact).abs() < 1e-14,
+                "n = {n}: {got} against {exact}"
+            );
         }
     }
 

@@ -109,7 +109,9 @@ pub struct RealTable {
 }
 
 /// The actuator's parameters and the rod model of an `[actuator]` table.
-fn actuator_of(table: Option<ActuatorTable>) -> Result<(Option<ActuatorParams>, RodModel), ParamError> {
+fn actuator_of(
+    table: Option<ActuatorTable>,
+) -> Result<(Option<ActuatorParams>, RodModel), ParamError> {
     let Some(t) = table else {
         return Ok((None, RodModel::Prescribed));
     };

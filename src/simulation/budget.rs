@@ -123,7 +123,10 @@ impl<E: PeriodEngine> PeriodEngine for TimeBudget<E> {
         self.engine.carries_rod_state()
     }
 
-    fn drive_profile(&self, segments: &[crate::engine::Segment]) -> Option<crate::engine::DriveProfile> {
+    fn drive_profile(
+        &self,
+        segments: &[crate::engine::Segment],
+    ) -> Option<crate::engine::DriveProfile> {
         self.engine.drive_profile(segments)
     }
 }

@@ -215,7 +215,11 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
             // from rest, until its boundary state repeats.
             options.stop_at_startup = None;
             let mut settled = None;
-            let rules: &[bool] = if rod_state { &[false] } else { &[!verify, false] };
+            let rules: &[bool] = if rod_state {
+                &[false]
+            } else {
+                &[!verify, false]
+            };
             for &ratio_rule in rules {
                 options.ratio_rule = ratio_rule;
                 event_log = scene.outputs.events.then(EventLog::default);
@@ -238,8 +242,10 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                     // No derivative of a one-dimensional map: the contraction
                     // the start-up showed stands in for it in the error
                     // estimate.
-                    steady.map_derivative =
-                        measured_contraction(&transient.boundary_velocities, signal.velocity_scale());
+                    steady.map_derivative = measured_contraction(
+                        &transient.boundary_velocities,
+                        signal.velocity_scale(),
+                    );
                 }
                 if transient.converged_by != Some(Convergence::Ratio) {
                     certificate.kind = CertificateKind::Orbit;

@@ -264,7 +264,11 @@ impl<'s> DrivenEngine<'s> {
             StickExit::PeriodEnd => span,
             StickExit::Leaves { s, .. } => s,
         };
-        let end_tau = if s_end >= span { self.period } else { walk.tau + s_end };
+        let end_tau = if s_end >= span {
+            self.period
+        } else {
+            walk.tau + s_end
+        };
         // Observers get the stick phase cut at the zeros of the rod's
         // acceleration, so that the slider's velocity extrema are segment
         // ends (the contract of `carries_rod_state`).
@@ -329,7 +333,11 @@ impl<'s> DrivenEngine<'s> {
             None => (span, false),
         };
         let rod_end = functions.rod_at(walk.tau, walk.rod, s_end);
-        let end_tau = if zero.is_none() { self.period } else { walk.tau + s_end };
+        let end_tau = if zero.is_none() {
+            self.period
+        } else {
+            walk.tau + s_end
+        };
         let x1 = walk.x + walk.v * s_end + 0.5 * a_s * s_end * s_end;
         let v1 = walk.v + a_s * s_end;
         if end_tau > walk.tau && observer.wants_slip_segments() {

@@ -158,6 +158,7 @@ impl DampedOscillator {
 
     /// The oscillator's state at `s` as a new oscillator: `(y(s), y'(s))`
     /// with the same `σ`, `ω0` (the solution shifted in time).
+    #[cfg(test)]
     pub(crate) fn advanced(&self, s: f64) -> DampedOscillator {
         let [y, dy, _] = self.eval(s);
         DampedOscillator {

@@ -9,7 +9,7 @@ use rand::SeedableRng;
 use rand::rngs::StdRng;
 
 use super::cases::{self, Dense, PERIOD, Plant};
-use crate::numerics::{Crossing, DampedOscillator, ExpTrig, Start, Work};
+use super::{Crossing, DampedOscillator, ExpTrig, Start, Work};
 
 const T: f64 = PERIOD;
 
