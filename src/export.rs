@@ -227,7 +227,8 @@ fn exact_series(
     periods_series: bool,
 ) -> Result<(crate::compare::exact::ExactSeries, Vec<PeriodRecord>), String> {
     use crate::compare::exact;
-    let (signal, motor) = crate::simulation::build(scene).map_err(|e| e.to_string())?;
+    let (signal, motor) = crate::simulation::build_prescribed(scene, "the trajectory export")
+        .map_err(|e| e.to_string())?;
     let period = signal.period();
     if times.len() as u64 > MAX_SAMPLES {
         return Err(format!(

@@ -371,6 +371,7 @@ pub fn characteristic(
 ) -> Result<Characteristic, CharacteristicError> {
     let clock = Instant::now();
     options.validate()?;
+    crate::simulation::prescribed_only(scene, "characteristic")?;
     let motor = scene.motor;
     if motor.mu_static <= 0.0 {
         return Err(ParamError::out_of_range(

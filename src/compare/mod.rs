@@ -387,7 +387,7 @@ pub fn compare_data(
     }
     let mut exact_scene = scene.clone();
     exact_scene.run.engine = EngineKind::Event;
-    let (signal, motor) = simulation::build(&exact_scene)?;
+    let (signal, motor) = simulation::build_prescribed(&exact_scene, "compare")?;
     let run = simulation::steady(&exact_scene)?;
     let v_inf = run.indicators.v_inf;
     let description = SignalDescription::new(&scene.signal, &signal, &motor);

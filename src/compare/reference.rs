@@ -25,7 +25,7 @@ pub(crate) fn export(
     steps_per_harmonic: u32,
     periods: u64,
 ) -> Result<UserData, CompareError> {
-    let (signal, motor) = simulation::build(scene)?;
+    let (signal, motor) = simulation::build_prescribed(scene, "compare")?;
     let options = FixedStepOptions {
         steps_per_harmonic,
         ..FixedStepOptions::default()

@@ -299,7 +299,7 @@ impl Settings {
         scene: &Scene,
         objective: Objective,
     ) -> Result<Problem, crate::error::Error> {
-        let (signal, _) = crate::simulation::build(scene)?;
+        let (signal, _) = crate::simulation::build_prescribed(scene, "optimize")?;
         let stroke = match (&scene.signal, &signal) {
             (SignalSpec::Ideal(shape) | SignalSpec::Fourier { shape, .. }, _) => shape.stroke,
             (

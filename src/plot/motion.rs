@@ -253,7 +253,8 @@ pub fn motion(
     rows: &[Row],
     name: &str,
 ) -> Result<Figure, PlotError> {
-    let (signal, motor) = simulation::build(scene).map_err(PlotError::simulation(name))?;
+    let (signal, motor) = simulation::build_prescribed(scene, "the motion figure")
+        .map_err(PlotError::simulation(name))?;
     let steady = if spans.contains(&Span::Steady) {
         match steady_state(scene, name)? {
             Ok(s) => Some(s),

@@ -155,7 +155,8 @@ const MODES: [Mode; 3] = [
 /// Runs `periods` periods from rest and returns the timeline and the
 /// signal.
 fn record(scene: &Scene, periods: u64, figure: &str) -> Result<(Timeline, Signal), PlotError> {
-    let (signal, motor) = simulation::build(scene).map_err(PlotError::simulation(figure))?;
+    let (signal, motor) = simulation::build_prescribed(scene, "the timeline figure")
+        .map_err(PlotError::simulation(figure))?;
     let mut timeline = Timeline::default();
     {
         let mut engine = EventEngine::new(&signal, &motor, EventOptions::default());

@@ -149,6 +149,28 @@ pub(crate) fn build(scene: &Scene) -> Result<(Signal, Motor), Error> {
     Ok((built.signal, built.motor))
 }
 
+/// [`build`] for what computes with the prescribed rod only: a driven rod
+/// (docs/model.md section 16) is refused with a one-line error naming
+/// `what`.
+pub(crate) fn build_prescribed(scene: &Scene, what: &str) -> Result<(Signal, Motor), Error> {
+    prescribed_only(scene, what)?;
+    build(scene)
+}
+
+/// Refuses a driven rod for `what`, which computes with the prescribed
+/// rod only.
+pub(crate) fn prescribed_only(scene: &Scene, what: &str) -> Result<(), ParamError> {
+    match scene.rod {
+        RodModel::Prescribed => Ok(()),
+        RodModel::Driven(_) => Err(ParamError::Inconsistent {
+            field: "actuator.rod".to_owned(),
+            reason: format!(
+                "not available for a driven rod ({what} assumes the rod follows its signal); a driven rod runs with `run`, `check`, `sweep` and `signal --voltage`"
+            ),
+        }),
+    }
+}
+
 /// [`run`] with the default options.
 pub(crate) fn simulate(scene: &Scene) -> Result<Outcome, Error> {
     run(scene, &RunOptions::default())
@@ -262,6 +284,7 @@ impl RunReport {
     /// the report of a run of `scene` (docs/model.md section 14). Only the
     /// event engine's steady state has them.
     pub fn sensitivities(&self, scene: &Scene) -> Result<crate::sensitivity::Sensitivities, Error> {
+        prescribed_only(scene, "the sensitivities")?;
         if scene.run.engine != EngineKind::Event {
             return Err(SimulationError::NoSensitivity(
                 "they are exact for the event engine only (run.engine = \"event\")".to_owned(),

@@ -72,11 +72,13 @@
 
 use super::rod::{RodStep, Tangent};
 use super::{FixedStepEngine, Walk};
-use crate::actuator::{DrivenRod, Load};
+use crate::actuator::{DrivenRod, Load, Voltage};
+use crate::engine::DriveProfile;
 use crate::engine::contact::transition;
 use crate::engine::{Kinematics, Mode, Observer, PeriodEnd, PeriodStart};
 use crate::motor::Motor;
 use crate::signal::RodState;
+use crate::signal::Signal;
 
 /// A driven rod on the engine's grid, and the state it carries.
 #[derive(Debug, Clone)]
@@ -87,6 +89,14 @@ pub(super) struct Driven {
     at_rest: f64,
     /// The state the last period ended in; `None` before the first.
     carry: Option<Carry>,
+    /// The voltage, the real actuator's `alpha` and the capacitance `C`,
+    /// for the current (21).
+    voltage: Voltage,
+    alpha: f64,
+    capacitance: f64,
+    /// `(tau, x_R, v_R)` at every node of the last period run with an
+    /// observer of segments ([`FixedStepEngine::drive_profile_of`]).
+    nodes: Vec<[f64; 3]>,
 }
 
 /// The boundary state of a driven rod's period.
@@ -104,7 +114,48 @@ impl Driven {
             step: RodStep::new(rod, motor, h),
             at_rest: rod.acceleration(Load::Stuck, 0.0, 0.0, 0.0),
             carry: None,
+            voltage: rod.voltage().clone(),
+            alpha: rod.real().transfer_factor,
+            capacitance: rod.design().capacitance,
+            nodes: Vec::new(),
         }
+    }
+
+    /// The rod's deviation from `signal`, the voltage and the current
+    /// over the last period recorded, from the nodes: extrema over the
+    /// nodes, mean squares by the trapezoidal rule (periodic).
+    pub(super) fn profile(&self, signal: &Signal) -> Option<DriveProfile> {
+        if self.nodes.len() < 2 {
+            return None;
+        }
+        let (mut e_max, mut i_max, mut e_sq, mut i_sq): (f64, f64, f64, f64) = (0.0, 0.0, 0.0, 0.0);
+        let values: Vec<[f64; 3]> = self
+            .nodes
+            .iter()
+            .map(|[tau, x, v]| {
+                let e = x - signal.position(*tau);
+                let i = self.capacitance * self.voltage.value(*tau)[1] + self.alpha * v;
+                [*tau, e, i]
+            })
+            .collect();
+        for w in values.windows(2) {
+            let dt = w[1][0] - w[0][0];
+            e_sq += 0.5 * dt * (w[0][1].powi(2) + w[1][1].powi(2));
+            i_sq += 0.5 * dt * (w[0][2].powi(2) + w[1][2].powi(2));
+        }
+        for [_, e, i] in &values {
+            e_max = e_max.max(e.abs());
+            i_max = i_max.max(i.abs());
+        }
+        let period = signal.period();
+        Some(DriveProfile {
+            rod_deviation_max: e_max,
+            rod_deviation_rms: (e_sq / period).sqrt(),
+            voltage_peak: self.voltage.peak(),
+            voltage_rms: self.voltage.rms(),
+            current_peak: i_max,
+            current_rms: (i_sq / period).sqrt(),
+        })
     }
 
     /// The rod at the end of the last period (at rest before the first).
@@ -162,6 +213,11 @@ impl FixedStepEngine<'_> {
         let mut rod = carry.rod;
         let mut segment_rod = rod;
         let mut tangent = Tangent::START;
+        let record = observer.wants_segments();
+        if record {
+            driven.nodes.clear();
+            driven.nodes.push([0.0, rod.x, rod.v]);
+        }
         let mut f0 = step.force(0.0);
         let mut last_dv = 0.0;
         for k in 0..self.steps {
@@ -197,6 +253,9 @@ impl FixedStepEngine<'_> {
             walk.v = v_slider;
             walk.tau = next;
             f0 = f1;
+            if record {
+                driven.nodes.push([next, rod.x, rod.v]);
+            }
         }
         walk.tau = self.period;
         let seg = [rod_state(segment_rod), rod_state(rod)];

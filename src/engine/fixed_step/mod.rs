@@ -610,6 +610,12 @@ impl PeriodEngine for FixedStepEngine<'_> {
         self.driven.is_some()
     }
 
+    /// A driven rod's figures over the last period run with an observer of
+    /// segments, from its nodes (`driven.rs`).
+    fn drive_profile(&self, _segments: &[super::Segment]) -> Option<super::DriveProfile> {
+        self.driven.as_ref()?.profile(self.signal)
+    }
+
     /// The velocity error the grid introduced in the last period, `sum h
     /// |Delta a|` over its mode changes (see [`FixedStepEngine`]).
     fn last_velocity_uncertainty(&self) -> Option<f64> {

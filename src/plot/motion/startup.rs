@@ -44,7 +44,8 @@ pub fn startup(scene: &Scene, name: &str) -> Result<Figure, PlotError> {
         let end = startup_end(p99) as usize;
         v_p.truncate(end);
         if v_p.len() < end {
-            let (signal, motor) = simulation::build(scene).map_err(PlotError::simulation(name))?;
+            let (signal, motor) = simulation::build_prescribed(scene, "the start-up figure")
+                .map_err(PlotError::simulation(name))?;
             let mut engine = EventEngine::new(&signal, &motor, EventOptions::default());
             let mut start = PeriodStart {
                 velocity: transient.final_velocity,
