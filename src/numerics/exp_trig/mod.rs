@@ -337,7 +337,10 @@ impl ExpTrig {
     pub(crate) fn harmonic_bounds(&self) -> [f64; 6] {
         let mut m = [0.0; 6];
         for (k, (a, b)) in self.pairs().enumerate() {
-            let (q, size) = ((k + 1) as f64 * self.w, a.hypot(b));
+            let (q, size) = (
+                (k + 1) as f64 * self.w,
+                oscillator::norm(a.abs(), b.abs()) * (1.0 + 2.0 * EPS),
+            );
             let mut t = size;
             for mj in &mut m {
                 *mj += t;

@@ -202,7 +202,7 @@ impl DampedOscillator {
     pub(crate) fn derivative_bounds<const J: usize>(&self, u: &[f64], err: &[f64]) -> [f64; J] {
         let w = self.omega0;
         let mag = |i: usize| u[i].abs() + err[i];
-        let energy = |i: usize| (w * mag(i)).hypot(mag(i + 1));
+        let energy = |i: usize| norm(w * mag(i), mag(i + 1));
         let mut out = [0.0; J];
         for (j, o) in out.iter_mut().enumerate() {
             let own = energy(j) / w;
@@ -258,6 +258,19 @@ impl DampedOscillator {
             };
         }
         e
+    }
+}
+
+/// `sqrt(a^2 + b^2)` for `a, b >= 0`, within 2 ulps: the plain formula
+/// where the squares cannot overflow or underflow (the callers' bounds carry
+/// a few ulps of slack), `hypot` elsewhere. The walk computes it for every
+/// piece, where `hypot` is the slowest step.
+pub(super) fn norm(a: f64, b: f64) -> f64 {
+    let m = a.max(b);
+    if m < 1e150 && m > 1e-150 {
+        (a * a + b * b).sqrt()
+    } else {
+        a.hypot(b)
     }
 }
 
