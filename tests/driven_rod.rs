@@ -252,3 +252,47 @@ fn the_amplifier_figures_follow_from_the_rod_actually_moved() {
         assert!(errors[1][j] < 1e-2, "figure {j}: {errors:?}");
     }
 }
+
+/// The commands that assume the rod follows its signal (the
+/// characteristic, the motion figures, the trajectory export, compare)
+/// refuse a driven rod in one line naming `actuator.rod`, with a non-zero
+/// exit, rather than computing with the wrong rod; `run` and `check`
+/// take it.
+#[test]
+fn commands_that_assume_a_prescribed_rod_refuse_a_driven_one() {
+    let dir = common::scratch("driven_rod", "refusals");
+    let scene = common::write(
+        &dir,
+        "driven.toml",
+        &driven(fourier(25e-6, 4.0, 3, true), DrivenSpec::default()).to_toml(),
+    );
+    let scene = common::s(&scene);
+    let figure = dir.join("motion.svg");
+    let times = common::write(&dir, "times.csv", "t\n0\n1e-5\n");
+    let trajectory = dir.join("trajectory.csv");
+    let refused: [Vec<&str>; 3] = [
+        vec!["characteristic", scene],
+        vec!["plot", scene, "-o", common::s(&figure)],
+        vec![
+            "run",
+            scene,
+            "--trajectory",
+            common::s(&trajectory),
+            "--times",
+            common::s(&times),
+        ],
+    ];
+    for args in refused {
+        let (code, _, err) = common::in_process(&args);
+        assert_ne!(code, 0, "{args:?} accepted a driven rod");
+        assert!(err.contains("actuator.rod"), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    }
+    assert!(
+        !figure.exists() && !trajectory.exists(),
+        "no file is written"
+    );
+    let (code, out, err) = common::in_process(&["run", scene]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("rod_deviation_max"), "{out}");
+}
