@@ -296,3 +296,65 @@ fn commands_that_assume_a_prescribed_rod_refuse_a_driven_one() {
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("rod_deviation_max"), "{out}");
 }
+
+/// The sensitivities of `v_inf` to the real actuator's parameters, the
+/// voltage held fixed (dual numbers through the steady period and its
+/// fixed point), match central differences of whole runs: relative steps
+/// `h = 1e-6` (the stick-slip case curves enough that `h = 1e-4` is off by
+/// 1e-5), truncation `~h^2` and the runs' `v_inf` errors (~1e-14) over
+/// `2 h theta` leave the differences good to about 1e-8; required 1e-6
+/// relative to the largest of the four.
+#[test]
+fn actuator_sensitivities_match_central_differences() {
+    for (signal, reaction) in [
+        (fourier(25e-6, 4.0, 3, true), true),
+        (fourier(25e-6, 36.0, 2, true), true),
+        (fourier(25e-6, 0.64, 3, true), true),
+        (fourier(25e-6, 4.0, 3, true), false),
+    ] {
+        let spec = DrivenSpec {
+            reaction,
+            real: RealActuator::default(),
+        };
+        let scene = driven(signal, spec);
+        let report = run(&scene);
+        let s = report
+            .actuator_sensitivities(&scene)
+            .expect("sensitivities");
+        assert_rel(
+            s.v_inf,
+            report.indicators.v_inf,
+            1e-9,
+            "v_inf of the dual pass",
+        );
+        let largest = s
+            .entries
+            .iter()
+            .map(|e| (e.value * e.at).abs())
+            .fold(0.0, f64::max);
+        for (k, e) in s.entries.iter().enumerate() {
+            let h = 1e-6 * e.at;
+            let at = |delta: f64| {
+                let mut real = RealActuator::default();
+                let value = Some(e.at + delta);
+                match k {
+                    0 => real.mass = value,
+                    1 => real.damping = value,
+                    2 => real.stiffness = value,
+                    _ => real.transfer_factor = value,
+                }
+                run(&driven(scene.signal.clone(), DrivenSpec { reaction, real }))
+                    .indicators
+                    .v_inf
+            };
+            let fd = (at(h) - at(-h)) / (2.0 * h);
+            eprintln!("{}: {:e} against {fd:e}", e.field, e.value);
+            assert!(
+                ((e.value - fd) * e.at).abs() <= 1e-6 * largest,
+                "{} (reaction {reaction}): {:e} against central differences {fd:e}",
+                e.field,
+                e.value
+            );
+        }
+    }
+}

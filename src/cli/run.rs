@@ -131,6 +131,29 @@ pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failur
         );
     }
     let outcome = simulation::simulate(&scene).map_err(|e| e.to_string())?;
+    if args.sensitivities && matches!(scene.rod, crate::actuator::RodModel::Driven(_)) {
+        // A driven rod: the real actuator's parameters, the voltage held.
+        let sensitivities = match outcome.report() {
+            Some(r) => r.actuator_sensitivities(&scene).map_err(|e| e.to_string()),
+            None => Err(format!("no periodic steady state ({})", outcome.regime())),
+        };
+        let text = if args.json {
+            let mut value = report::to_json(&outcome, &scene);
+            report::add_actuator_sensitivities_json(&mut value, &sensitivities);
+            let mut text = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
+            text.push('\n');
+            text
+        } else {
+            let mut text = report::to_text(&outcome);
+            text.push_str(&report::actuator_sensitivities_text(&sensitivities));
+            text
+        };
+        return match args.output {
+            Some(path) => crate::output::write_atomically(&path, text.as_bytes())
+                .map_err(|e| format!("cannot write {}: {e}", path.display())),
+            None => write_out(streams, &text),
+        };
+    }
     let sensitivities = args.sensitivities.then(|| match outcome.report() {
         Some(r) => r.sensitivities(&at).map_err(|e| e.to_string()),
         None => Err(format!("no periodic steady state ({})", outcome.regime())),

@@ -11,11 +11,13 @@
 //!   (marching squares).
 //! * `line_fit`: least-squares lines and log-log slopes.
 //! * `quadrature`: Gauss-Legendre rules.
+//! * `dual`: forward-mode derivatives (dual numbers).
 //! * `taylor`: Taylor coefficients of a harmonic series about a point.
 
 pub(crate) mod bracket;
 mod compensated;
 pub(crate) mod contour;
+pub(crate) mod dual;
 pub(crate) mod exp_trig;
 pub(crate) mod line_fit;
 pub(crate) mod quadrature;

@@ -39,6 +39,7 @@
 //! `propagate` (the tangents and the fixed point), `structure` (changes
 //! of the event structure), `selection` (a nearer orbit that appears).
 
+mod driven;
 mod harmonics;
 mod orbit;
 mod parameter;
@@ -47,6 +48,8 @@ mod selection;
 mod structure;
 mod tangent;
 
+pub(crate) use driven::of_driven_period;
+pub use driven::{ActuatorSensitivities, ActuatorSensitivity};
 pub use parameter::{Parameter, VariedScene};
 pub use structure::ChangeKind;
 

@@ -334,9 +334,15 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         };
         engine.run_period(2, start, &mut recorded)?;
         map_evaluations += 1;
-        engine.drive_profile(&recorded.segments)
+        engine
+            .drive_profile(&recorded.segments)
+            .map(|profile| (profile, recorded.segments))
     } else {
         None
+    };
+    let (drive, driven_period) = match drive {
+        Some((profile, segments)) => (Some(profile), Some(segments)),
+        None => (None, None),
     };
     let power = match (&scene.actuator, &signal) {
         (Some(actuator), Signal::Fourier(s)) if wants(Indicator::VelocityPerPower) => {
@@ -414,6 +420,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         transient,
         steady,
         drive,
+        driven_period,
     })))
 }
 

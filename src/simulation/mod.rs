@@ -279,10 +279,40 @@ impl Outcome {
 }
 
 impl RunReport {
+    /// A driven rod's sensitivities of `v_inf` to the real actuator's
+    /// mass, damping, stiffness and transfer factor, the voltage held fixed
+    /// (docs/model.md section 16), at this steady state of `scene`.
+    pub fn actuator_sensitivities(
+        &self,
+        scene: &Scene,
+    ) -> Result<crate::sensitivity::ActuatorSensitivities, Error> {
+        let (RodModel::Driven(spec), Some(segments)) = (&scene.rod, &self.driven_period) else {
+            return Err(ParamError::Inconsistent {
+                field: "actuator.rod".to_owned(),
+                reason:
+                    "the actuator's sensitivities need a driven rod (actuator.rod = \"driven\")"
+                        .to_owned(),
+            }
+            .into());
+        };
+        let (signal, motor) = build(scene)?;
+        let rod = driven_rod(scene, spec, &signal, &motor)?;
+        crate::sensitivity::of_driven_period(&rod, &motor, self.period, segments).map_err(
+            |reason| {
+                ParamError::Inconsistent {
+                    field: "actuator.rod".to_owned(),
+                    reason: format!("no sensitivities: {reason}"),
+                }
+                .into()
+            },
+        )
+    }
+
     /// The exact sensitivities of `v_inf` to every parameter of `scene`
     /// ([`crate::sensitivity::Parameter::all_for`]) at this steady state,
     /// the report of a run of `scene` (docs/model.md section 14). Only the
-    /// event engine's steady state has them.
+    /// event engine's steady state of a prescribed rod has them (a driven
+    /// rod's: [`RunReport::actuator_sensitivities`]).
     pub fn sensitivities(&self, scene: &Scene) -> Result<crate::sensitivity::Sensitivities, Error> {
         prescribed_only(scene, "the sensitivities")?;
         if scene.run.engine != EngineKind::Event {

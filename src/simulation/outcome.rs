@@ -142,6 +142,9 @@ pub struct RunReport {
     /// the steady period (docs/model.md section 16); `None` for a
     /// prescribed rod.
     pub drive: Option<DriveProfile>,
+    /// A driven rod's steady period, segment by segment (the one
+    /// [`RunReport::drive`] describes); `None` for a prescribed rod.
+    pub driven_period: Option<Vec<Segment>>,
 }
 
 /// The mode of operation in steady state (Part I of the paper): whether the
