@@ -117,6 +117,9 @@ pub const SYMBOLS: &[Symbol] = &[
     s("v_S", "$v_S$", "m/s", "slider velocity"),
     s("a_S", "$a_S$", "m/s²", "slider acceleration"),
     s("period", "$T$", "s", "period"),
+    s("stiffness", "$c$", "N/m", "actuator stiffness"),
+    s("stiffness_error", "Δ$c$/$c$", "1", "stiffness error"),
+    s("rod_deviation", "$x_R$−$x_{sig}$", "m", "rod deviation"),
 ];
 
 /// The symbol named `key`, if the table has it.

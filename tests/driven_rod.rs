@@ -357,4 +357,154 @@ fn actuator_sensitivities_match_central_differences() {
             );
         }
     }
+/// A driven scene's steady period as observers get it, with the engine
+/// that samples the rod inside its segments.
+struct SteadyPeriod {
+    built: stickslip::scene::BuiltScene,
+    rod: stickslip::actuator::DrivenRod,
+    segments: Vec<stickslip::engine::Segment>,
+}
+
+impl SteadyPeriod {
+    fn of(mut scene: Scene) -> Self {
+        scene.outputs.trajectory = true;
+        let segments = run(&scene).trajectory.expect("the steady period");
+        let built = scene.build().expect("builds");
+        let (RodModel::Driven(spec), Some(design), stickslip::signal::Signal::Fourier(series)) =
+            (&scene.rod, &scene.actuator, &built.signal)
+        else {
+            panic!("a driven rod with an actuator and a Fourier signal");
+        };
+        let voltage = stickslip::actuator::Voltage::designed(series, design);
+        let rod = stickslip::actuator::DrivenRod::new(spec, design, voltage, &built.motor)
+            .expect("a driven rod");
+        Self {
+            built,
+            rod,
+            segments,
+        }
+    }
+
+    fn engine(&self) -> stickslip::engine::DrivenEngine<'_> {
+        let options = stickslip::engine::EventOptions::default();
+        stickslip::engine::DrivenEngine::new(
+            &self.built.signal,
+            &self.rod,
+            &self.built.motor,
+            options.velocity_tolerance,
+            options.max_events_per_period,
+        )
+    }
+
+    /// Phases strictly inside every segment of positive duration.
+    fn inner_phases(&self) -> Vec<(usize, f64)> {
+        let mut out = Vec::new();
+        for (i, s) in self.segments.iter().enumerate() {
+            for j in 1..8 {
+                out.push((i, s.start + s.duration() * f64::from(j) / 8.0));
+            }
+        }
+        out
+    }
+}
+
+/// Without the reaction and with the actuator as designed, the voltage
+/// moves the rod along the signal (the inverse of (23), docs/model.md
+/// section 16), so the rod inside every segment of the steady period is
+/// the signal: position to 1e-12 of the stroke, velocity to 1e-12 of the
+/// signal's largest velocity.
+#[test]
+fn inside_a_segment_the_rod_without_the_reaction_is_the_signal() {
+    let period = SteadyPeriod::of(driven(fourier(25e-6, 4.0, 3, true), without_reaction()));
+    let engine = period.engine();
+    let signal = &period.built.signal;
+    let v_scale = signal.velocity_scale();
+    assert!(period.segments.len() >= 2, "{:?}", period.segments);
+    for (i, t) in period.inner_phases() {
+        let rod = engine.rod_in_segment(&period.segments[i], t);
+        assert!(
+            (rod.x - signal.position(t)).abs() <= 1e-12 * 25e-6,
+            "x at {t:e}: {} against {}",
+            rod.x,
+            signal.position(t)
+        );
+        assert!(
+            (rod.v - signal.velocity(t)).abs() <= 1e-12 * v_scale,
+            "v at {t:e}: {} against {}",
+            rod.v,
+            signal.velocity(t)
+        );
+    }
+}
+
+/// With the reaction and a real actuator 5 % stiffer than designed, the
+/// rod inside each segment obeys the actuator's equation of its mode,
+/// `M_m a + d v + c x = alpha u(t) + F_m` (docs/model.md section 16: `M`
+/// and `-mu_d F_c` in forward slip, `M + m_s` and `m_s g_t` in stick),
+/// with `a` the central difference of the helper's velocity and `v` that
+/// of its position; it meets the segment's recorded end state; and a
+/// phase outside the segment, or NaN, gives a state of the segment.
+#[test]
+fn inside_a_segment_the_driven_rod_obeys_the_actuator_equation_of_its_mode() {
+    use stickslip::engine::{Direction, Mode};
+    let stiff = DrivenSpec {
+        reaction: true,
+        real: RealActuator {
+            stiffness: Some(25.83e6),
+            ..RealActuator::default()
+        },
+    };
+    let period = SteadyPeriod::of(driven(fourier(25e-6, 36.0, 2, true), stiff));
+    let engine = period.engine();
+    let real = period.rod.real();
+    let motor = &period.built.motor;
+    let ms = motor.params().slider_mass;
+    let friction = motor.mu_d() * motor.contact_force();
+    // The largest acceleration of the signal, on a fine grid.
+    let signal = &period.built.signal;
+    let a_scale = (0..1000)
+        .map(|i| {
+            signal
+                .acceleration(signal.period() * f64::from(i) / 1000.0)
+                .abs()
+        })
+        .fold(0.0, f64::max);
+    let v_scale = signal.velocity_scale();
+    let mut modes = Vec::new();
+    for (i, t) in period.inner_phases() {
+        let segment = &period.segments[i];
+        let h = segment.duration() * 1e-4;
+        let at = |t: f64| engine.rod_in_segment(segment, t);
+        let (before, now, after) = (at(t - h), at(t), at(t + h));
+        let a = (after.v - before.v) / (2.0 * h);
+        let v = (after.x - before.x) / (2.0 * h);
+        let (mass, force) = match segment.mode {
+            Mode::Slip(Direction::Forward) => (real.mass, -friction),
+            Mode::Slip(Direction::Backward) => (real.mass, friction),
+            Mode::Stick => (real.mass + ms, ms * motor.g_t()),
+        };
+        modes.push(segment.mode);
+        let u = period.rod.voltage().value(t)[0];
+        let expected =
+            (real.transfer_factor * u + force - real.damping * now.v - real.stiffness * now.x)
+                / mass;
+        assert!(
+            (a - expected).abs() <= 1e-6 * a_scale,
+            "{:?} at {t:e}: a {a:e} against {expected:e}",
+            segment.mode
+        );
+        assert!((v - now.v).abs() <= 1e-6 * v_scale, "v at {t:e}");
+    }
+    assert!(
+        modes.iter().any(|m| matches!(m, Mode::Slip(_))),
+        "{modes:?}"
+    );
+    for s in &period.segments {
+        let end = engine.rod_in_segment(s, s.end);
+        assert!((end.x - s.rod_end.x).abs() <= 1e-12 * 25e-6, "{s:?}");
+        assert!((end.v - s.rod_end.v).abs() <= 1e-12 * v_scale, "{s:?}");
+        assert_eq!(engine.rod_in_segment(s, f64::NAN), s.rod_start);
+        assert_eq!(engine.rod_in_segment(s, s.start - 1.0), s.rod_start);
+        assert_eq!(engine.rod_in_segment(s, s.end + 1.0), end);
+    }
 }

@@ -100,3 +100,61 @@ fn figure8_uses_the_scene_it_is_given() {
     assert!(a.csv.contains(&format!("T = {:e} s", period(&two))));
     assert!(b.csv.contains(&format!("T = {:e} s", period(&three))));
 }
+
+/// The driven rod's figure (`plot::driven`) at the paper's default scene
+/// draws what the model says: without the reaction and with the actuator
+/// as designed the rod is the signal, so that run's `v_inf` is the
+/// prescribed rod's (to 1e-12); the sampled deviation of each steady
+/// period reaches the maximum the run certifies (within the sampling's
+/// 1e-3) and never exceeds it; and the period mean of the 5 % stiffer
+/// rod's deviation is the static deflection `x_0 (c/c_real - 1)` under the
+/// offset voltage, up to the mean friction force over `c_real`, which is
+/// at most `mu_0 F_c / c_real` (the period mean of the rod's equation,
+/// `c_real <x_R> = alpha u_0 + <F>`). Its CSV holds every point drawn.
+#[test]
+fn the_driven_rod_figure_draws_the_model() {
+    use stickslip::plot::driven::{self, STIFFER};
+    let scene = stickslip::Scene::default();
+    let runs = driven::runs(&scene).unwrap();
+    let design = runs.sweep.iter().find(|p| p.stiffness_error == 0).unwrap();
+    let v = design.without_reaction.unwrap();
+    assert!(
+        (v - runs.prescribed).abs() <= 1e-12 * runs.prescribed,
+        "{v:e} against {:e}",
+        runs.prescribed
+    );
+    assert_eq!(runs.sweep.len(), 21);
+    for p in &runs.periods {
+        let sampled = p
+            .samples
+            .iter()
+            .map(|s| s.deviation.abs())
+            .fold(0.0, f64::max);
+        assert!(
+            sampled <= p.deviation_max * (1.0 + 1e-9) && sampled >= p.deviation_max * (1.0 - 1e-3),
+            "{} %: sampled {sampled:e}, certified {:e}",
+            p.stiffness_error,
+            p.deviation_max
+        );
+    }
+    let stiffer = &runs.periods[1];
+    assert_eq!(stiffer.stiffness_error, STIFFER);
+    let c_real = scene.actuator.unwrap().stiffness * f64::from(100 + STIFFER) / 100.0;
+    let mean: f64 = stiffer
+        .samples
+        .windows(2)
+        .map(|w| 0.5 * (w[0].deviation + w[1].deviation) * (w[1].t - w[0].t))
+        .sum::<f64>()
+        / runs.period;
+    let static_shift = runs.offset * (100.0 / f64::from(100 + STIFFER) - 1.0);
+    let friction = scene.motor.mu_static * scene.motor.contact_force / c_real;
+    assert!(
+        (mean - static_shift).abs() <= friction,
+        "mean {mean:e}, static {static_shift:e}, friction bound {friction:e}"
+    );
+    let figure = driven::figure(&runs, stickslip::plot::Preset::DoubleColumn).unwrap();
+    // One row per sample of both periods, per stiffness error, and the
+    // prescribed rod's.
+    let samples: usize = runs.periods.iter().map(|p| p.samples.len()).sum();
+    assert_eq!(check_csv(&figure), samples + runs.sweep.len() + 1);
+}

@@ -73,6 +73,11 @@ fn figures() -> Vec<Figure> {
         timeline::scene_timeline(&stick, "timeline").unwrap(),
         sweep,
         stickslip::plot::characteristic::scene_characteristic(&stick, "characteristic").unwrap(),
+        stickslip::plot::driven::figure(
+            &stickslip::plot::driven::runs(&scene).unwrap(),
+            Preset::DoubleColumn,
+        )
+        .unwrap(),
     ]
 }
 

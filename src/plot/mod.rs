@@ -37,9 +37,12 @@
 //! * [`characteristic`]: `v_inf` against the load, with the stall force
 //!   and the output power;
 //! * [`compare`]: a user's fixed-step results against the exact solution
-//!   (`stickslip compare`).
+//!   (`stickslip compare`);
 //! * [`optimize`]: an optimal signal against the sigma signal, and the
-//!   `n = 2` design plane as a heat map.
+//!   `n = 2` design plane as a heat map;
+//! * [`driven`]: the actuator in the loop: a driven rod's velocity and
+//!   deviation from its signal, and `v_inf` against the actuator's
+//!   stiffness error.
 //!
 //! # Output contract
 //!
@@ -64,6 +67,7 @@ pub mod characteristic;
 mod colorbar;
 pub mod compare;
 mod data;
+pub mod driven;
 pub(crate) mod export;
 mod font;
 mod layout;

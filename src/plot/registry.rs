@@ -1,7 +1,7 @@
 //! Every figure the project draws, in one list: the figures in `plots/`
 //! (the paper's figures 2-9, the stroke scaling law, the event timeline,
-//! the characteristic and the optimiser's two figures), every
-//! `stickslip plot --figure` kind of a scene, sweep plots (faceted; two
+//! the characteristic, the optimiser's two figures and the driven rod),
+//! every `stickslip plot --figure` kind of a scene, sweep plots (faceted; two
 //! columns on one axis; display units and a named column), the
 //! work-precision study (drawn from its committed data,
 //! `plots/work_precision.svg.csv`: its wall times are measured, so the
@@ -20,8 +20,8 @@ use super::motion::{self, Row, Span};
 use super::performance::{GridPoint, figures6_7};
 use super::sweep::{SweepSpec, sweep_figure_from};
 use super::{
-    Figure, PlotError, Preset, characteristic, compare, optimize, precision, scaling, signals,
-    timeline,
+    Figure, PlotError, Preset, characteristic, compare, driven, optimize, precision, scaling,
+    signals, timeline,
 };
 use crate::motor::Motor;
 use crate::optimize::map::{self, MapGrid};
@@ -83,6 +83,9 @@ pub const ALL: &[Entry] = &[
     entry("optimize_plane", |_| {
         let m = map::map(optimum()?, MapGrid::default());
         optimize::map_figure(&m, "optimize_plane")
+    }),
+    entry(driven::NAME, |preset| {
+        driven::figure(driven_runs()?, preset)
     }),
     entry("plot_motion", |_| {
         // `stickslip plot SCENE -o FILE`: its default periods and rows.
@@ -225,6 +228,18 @@ fn sweep_csv() -> Result<String, PlotError> {
         ));
     }
     Ok(csv)
+}
+
+/// The driven rod's runs at the default scene (the paper's signal, the
+/// Table 1 actuator), shared by the presets.
+fn driven_runs() -> Result<&'static driven::DrivenRuns, PlotError> {
+    static RUNS: OnceLock<Result<driven::DrivenRuns, String>> = OnceLock::new();
+    RUNS.get_or_init(|| driven::runs(&Scene::default()).map_err(|e| e.to_string()))
+        .as_ref()
+        .map_err(|e| PlotError::Data {
+            figure: driven::NAME.to_owned(),
+            reason: e.clone(),
+        })
 }
 
 /// The optimum of the default scene with the default settings (`stickslip

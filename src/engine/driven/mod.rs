@@ -144,6 +144,20 @@ impl<'s> DrivenEngine<'s> {
         self.state
     }
 
+    /// The rod at phase `tau` (s) inside `segment`, a segment of this
+    /// rod's motion as observers get it: the closed form of the segment's
+    /// mode (the particular solution plus the free oscillation started
+    /// from `segment.rod_start` at `segment.start`). Not the signal: the
+    /// rod strays from it. `tau` is held to the segment (a NaN to its
+    /// start), so the result is always a state of the segment.
+    pub fn rod_in_segment(&self, segment: &Segment, tau: f64) -> Kinematics {
+        let span = segment.duration().max(0.0);
+        let s = (tau - segment.start).clamp(0.0, span);
+        let s = if s.is_nan() { 0.0 } else { s };
+        self.functions(segment.mode)
+            .rod_at(segment.start, segment.rod_start, s)
+    }
+
     fn functions(&self, mode: Mode) -> &ModeFunctions {
         functions_of(&self.modes, mode)
     }
