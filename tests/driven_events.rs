@@ -229,7 +229,6 @@ fn scene(motor: MotorParams, signal: SignalSpec, reaction: bool, real: RealActua
 /// so the slider stays stuck with `a_st` far below the band (-360 against
 /// -226 m/s^2) for 1.4e-5 s.
 #[test]
-#[ignore = "the driven engine misses this exit (reported, not yet fixed)"]
 fn a_stick_phase_that_starts_on_a_band_edge_ends_when_a_st_leaves_it() {
     let case = scene(
         MotorParams {
@@ -262,7 +261,6 @@ fn a_stick_phase_that_starts_on_a_band_edge_ends_when_a_st_leaves_it() {
 /// ends the slip: the slider slides forward on a rod slower than itself
 /// to the period's end (`v_rel = -0.44 m/s`).
 #[test]
-#[ignore = "the driven engine misses this zero of v_rel (reported, not yet fixed)"]
 fn a_slip_whose_v_rel_turns_back_within_the_tolerance_ends_at_its_zero() {
     let case = scene(
         MotorParams {

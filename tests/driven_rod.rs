@@ -357,6 +357,8 @@ fn actuator_sensitivities_match_central_differences() {
             );
         }
     }
+}
+
 /// A driven scene's steady period as observers get it, with the engine
 /// that samples the rod inside its segments.
 struct SteadyPeriod {

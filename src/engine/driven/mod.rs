@@ -166,10 +166,19 @@ impl<'s> DrivenEngine<'s> {
     /// the rod state `(x, v)`, and where it goes on right after `tau` when
     /// it sits on an edge within rounding.
     fn band_after(&self, tau: f64, x: f64, v: f64) -> Band {
-        let f = self.functions(Mode::Stick).band_function(tau, x, v, 0.0);
-        let [a, da, dda] = f.eval(0.0);
-        let [eta, eta1, _] = f.eval_error_bound(0.0);
+        let stick = self.functions(Mode::Stick);
         let (plus, minus) = (self.contact.a_plus, self.contact.a_minus);
+        let f = stick.band_function(tau, x, v, 0.0);
+        let [a, da, dda] = f.eval(0.0);
+        let [_, eta1, _] = f.eval_error_bound(0.0);
+        // On an edge within the stick search's own tolerance, the direction
+        // decides (segment::band_tolerance).
+        let span = self.period - tau;
+        let eta = segment::band_tolerance(
+            &stick.band_function(tau, x, v, plus),
+            &stick.band_function(tau, x, v, minus),
+            span,
+        );
         // Which way a value at an edge moves: the first derivative that is
         // clearly nonzero.
         let rising = || da > eta1 || (da.abs() <= eta1 && dda > 0.0);
@@ -339,7 +348,7 @@ impl<'s> DrivenEngine<'s> {
             (walk.v, a_s),
             span,
             self.contact.tol_v,
-            walk.departure,
+            (dir, walk.departure),
             &mut self.counters,
         );
         let (s_end, grazing) = match zero {

@@ -22,6 +22,24 @@ pub(super) struct ModeFunctions {
     acc: [Vec<f64>; 2],
 }
 
+/// The next start of a search after a touch or an inward crossing at `s`
+/// found from `from`: `s`, or a few ulps of the time beyond `from` where
+/// the finder reported its own start again, so that the search always
+/// moves on.
+fn progress(from: f64, s: f64, time: f64) -> f64 {
+    s.max(from + 4.0 * f64::EPSILON * time)
+}
+
+/// The tolerance within which the stuck system's acceleration counts as
+/// on a band edge, for `upper = a_st - a_0^+` and `lower = a_st - a_0^-`
+/// over `span`: four times their rounding bound (the root finder's own
+/// floor). The engine decides the band at a zero of `v_rel` with the same
+/// tolerance, so that a stick phase never starts within it moving
+/// outwards.
+pub(super) fn band_tolerance(upper: &ExpTrig, lower: &ExpTrig, span: f64) -> f64 {
+    4.0 * upper.eval_error_bound(span)[0].max(lower.eval_error_bound(span)[0])
+}
+
 /// How a stick phase ends.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum StickExit {
@@ -176,15 +194,26 @@ impl ModeFunctions {
     ) -> StickExit {
         let upper = self.band_function(tau, rod.x, rod.v, hi);
         let lower = self.band_function(tau, rod.x, rod.v, lo);
-        let tol = upper.eval_error_bound(span)[0];
+        let tol = band_tolerance(&upper, &lower, span);
+        // A stick phase that starts on an edge (within `tol`, where the
+        // engine decided it moves inwards: [`band_tolerance`]) starts at
+        // that decision; elsewhere nothing at the start is an event.
+        let on_edge = |f: &ExpTrig| f.eval(0.0)[0].abs() <= tol;
+        let mut starts = [on_edge(&upper), on_edge(&lower)].map(|edge| {
+            if edge {
+                Start::AfterEvent
+            } else {
+                Start::Clear
+            }
+        });
         let mut from = 0.0;
         loop {
             counters.root_iterations += 1;
-            // A stick phase starts at an event (or the period start, where
-            // the band was just decided): a value at the edge there is that
-            // decision, not a new exit.
-            let up = upper.first_zero(from, span, tol, Start::AfterEvent);
-            let down = lower.first_zero(from, span, tol, Start::AfterEvent);
+            let up = upper.first_zero(from, span, tol, starts[0]);
+            let down = lower.first_zero(from, span, tol, starts[1]);
+            // After a touch or an inward crossing the search goes on from
+            // it, which it has just handled.
+            starts = [Start::AfterEvent; 2];
             let at = |c: &Option<Crossing>| match c {
                 Some(Crossing::Transversal { s, .. } | Crossing::Tangency { s }) => *s,
                 None => f64::INFINITY,
@@ -204,9 +233,9 @@ impl ModeFunctions {
                     if outward {
                         return StickExit::Leaves { s, to: leaves };
                     }
-                    from = s;
+                    from = progress(from, s, tau + span);
                 }
-                Some(Crossing::Tangency { s }) => from = s,
+                Some(Crossing::Tangency { s }) => from = progress(from, s, tau + span),
             }
             if from >= span {
                 return StickExit::PeriodEnd;
@@ -225,18 +254,48 @@ impl ModeFunctions {
         slider: (f64, f64),
         span: f64,
         tol_v: f64,
-        departure: bool,
+        (dir, departure): (Direction, bool),
         counters: &mut WorkCounters,
     ) -> Option<SlipZero> {
         let f = self.v_rel(tau, rod, slider);
         counters.root_iterations += 1;
-        let start = if departure {
+        // A departure from a zero of v_rel at rounding level is left by
+        // the finder's open start; only one that starts farther (a grazing
+        // the slider slides on from) is skipped as the event it was. A
+        // v_rel that turns back within tol_v is then a tangency: a grazing.
+        let rounding = 4.0 * f.eval_error_bound(span)[0];
+        let start = if departure && f.eval(0.0)[0].abs() > rounding {
             Start::AfterEvent
         } else {
             Start::Clear
         };
         let time_error = 4.0 * f64::EPSILON * (tau + span);
-        f.first_zero(0.0, span, tol_v, start).map(|c| match c {
+        let found = f.first_zero(0.0, span, tol_v, start);
+        // The first event must end the slip the way it goes: a zero where
+        // v_rel falls in forward slip (rises in backward), or v_rel keeps
+        // its sign to the end. Otherwise v_rel turned back within the
+        // departure and crossed zero there: the first extremum of v_rel
+        // (a zero of v_rel' = a_R - a_s) decides, a grazing where
+        // |v_rel| <= tol_v, else the search goes on from it.
+        let expected = dir.sign();
+        let consistent = match found {
+            None => f.eval(span)[0] * expected >= -tol_v,
+            Some(Crossing::Transversal { rising, .. }) => rising == (expected < 0.0),
+            Some(Crossing::Tangency { .. }) => true,
+        };
+        let found = if consistent {
+            found
+        } else {
+            counters.root_iterations += 1;
+            let slope = self.v_rel_rate(tau, rod, slider.1);
+            let tol = 4.0 * slope.eval_error_bound(span)[0];
+            match slope.first_zero(0.0, span, tol, Start::Clear) {
+                Some(c) if f.eval(c.s())[0].abs() <= tol_v => Some(Crossing::Tangency { s: c.s() }),
+                Some(c) => f.first_zero(c.s(), span, tol_v, Start::Clear),
+                None => found,
+            }
+        };
+        found.map(|c| match c {
             Crossing::Transversal { s, .. } => SlipZero {
                 s,
                 tangency: false,
@@ -248,5 +307,18 @@ impl ModeFunctions {
                 time_error,
             },
         })
+    }
+
+    /// `v_rel'(s) = a_R(tau + s) - a_s` in this slip mode.
+    fn v_rel_rate(&self, tau: f64, rod: Kinematics, a_s: f64) -> ExpTrig {
+        let free = self.free(tau, rod);
+        ExpTrig {
+            poly: [-a_s, 0.0, 0.0],
+            w: self.w,
+            phi: tau,
+            a: self.acc[0].clone(),
+            b: self.acc[1].clone(),
+            osc: Some(free.derivative().derivative()),
+        }
     }
 }
