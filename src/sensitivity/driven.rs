@@ -131,7 +131,7 @@ pub(crate) fn of_driven_period(
                         (a_r - edge, jerk, rate * a_r.v.abs())
                     }
                 };
-                if !(dg.abs() > 1e-9 * scale) {
+                if dg.is_nan() || dg.abs() <= 1e-9 * scale {
                     return Err(
                         "the steady period holds a grazing, where an event time has no derivative"
                             .into(),
