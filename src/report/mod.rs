@@ -12,14 +12,19 @@
 //! Every indicator has one definition and one unit ([`RunReport::value`],
 //! [`Indicator`]), the same in `run`, `check`, sweeps and figures.
 
-use crate::engine::{Direction, DriveProfile, EventCounts};
+use crate::engine::{Direction, EventCounts};
 use crate::indicator::Indicator;
 use crate::provenance;
 use crate::scene::Scene;
 use crate::scene::SceneFile;
-use crate::sensitivity::{ActuatorSensitivities, Derivative, Sensitivities};
+use crate::sensitivity::{Derivative, Sensitivities};
+
+mod driven;
+
 use crate::signal::Held;
 use crate::simulation::{CertificateKind, Outcome, RunReport, RunTimes, Unsettled};
+use driven::drive_figures;
+pub(crate) use driven::{actuator_sensitivities_text, add_actuator_sensitivities_json};
 use serde_json::{Map, Value, json};
 use std::fmt::Write as _;
 
@@ -436,18 +441,6 @@ fn unsettled_text(out: &mut String, state: &Unsettled, times: RunTimes) {
     );
 }
 
-/// A driven rod's figures by their output keys (docs/interface.md).
-fn drive_figures(d: &DriveProfile) -> [(&'static str, f64); 6] {
-    [
-        ("rod_deviation_max", d.rod_deviation_max),
-        ("rod_deviation_rms", d.rod_deviation_rms),
-        ("voltage_peak", d.voltage_peak),
-        ("voltage_rms", d.voltage_rms),
-        ("current_peak", d.current_peak),
-        ("current_rms", d.current_rms),
-    ]
-}
-
 fn steady_text(r: &RunReport) -> String {
     let mut out = String::new();
     let ind = &r.indicators;
@@ -639,71 +632,6 @@ pub(crate) fn add_sensitivities_json(
             m.insert("sensitivities_unavailable".into(), json!(reason));
         }
     }
-}
-
-/// The `sensitivities` of a driven rod (`run --json --sensitivities`):
-/// `held_fixed` is `"voltage"`, one object per real-actuator field with
-/// `value` (`dv_inf/dtheta`), `unit` and `relative`
-/// (`theta / v_inf dv_inf/dtheta`); `null` and `sensitivities_unavailable`
-/// with the reason when there are none.
-pub(crate) fn add_actuator_sensitivities_json(
-    object: &mut Value,
-    sensitivities: &Result<ActuatorSensitivities, String>,
-) {
-    let Value::Object(m) = object else {
-        return;
-    };
-    m.insert("held_fixed".into(), json!("voltage"));
-    match sensitivities {
-        Ok(s) => {
-            let mut entries = Map::new();
-            for e in &s.entries {
-                entries.insert(
-                    e.field.into(),
-                    json!({
-                        "value": number(e.value),
-                        "unit": e.unit,
-                        "relative": number(e.value * e.at / s.v_inf),
-                    }),
-                );
-            }
-            m.insert("sensitivities".into(), Value::Object(entries));
-        }
-        Err(reason) => {
-            m.insert("sensitivities".into(), Value::Null);
-            m.insert("sensitivities_unavailable".into(), json!(reason));
-        }
-    }
-}
-
-/// A driven rod's sensitivities as lines of the text summary.
-pub(crate) fn actuator_sensitivities_text(
-    sensitivities: &Result<ActuatorSensitivities, String>,
-) -> String {
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "sensitivities held fixed: the voltage (as designed for [actuator])"
-    );
-    match sensitivities {
-        Ok(s) => {
-            let _ = writeln!(out, "sensitivities of v_inf to the real actuator:");
-            for e in &s.entries {
-                let _ = writeln!(
-                    out,
-                    "  d/d {:<30} {:.6e} {}  (relative {:.4})",
-                    e.field,
-                    e.value,
-                    e.unit,
-                    e.value * e.at / s.v_inf
-                );
-            }
-        }
-        Err(reason) => {
-            let _ = writeln!(out, "sensitivities: none ({reason})");
-        }
-    }
-    out
 }
 
 /// The sensitivities as lines of the text summary, after the line saying
