@@ -382,21 +382,17 @@ impl<'s> EventEngine<'s> {
         kind: EventKind,
         observer: &mut O,
     ) -> Result<(), SimulationError> {
-        walk.events += 1;
-        self.counters.events.add(&kind);
-        if walk.events > self.max_events {
-            return Err(SimulationError::TooManyEvents {
-                limit: self.max_events,
-                period: walk.period,
-                phase: walk.tau,
-            });
-        }
-        observer.event(&Event {
+        let at = Event {
             period: walk.period,
             phase: walk.tau,
             kind,
-        });
-        Ok(())
+        };
+        super::emit_event(
+            &mut self.counters,
+            (&mut walk.events, self.max_events),
+            at,
+            observer,
+        )
     }
 
     /// Moves a stuck slider with the rod to `end`, handing the stick

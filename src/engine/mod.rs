@@ -339,3 +339,25 @@ pub trait PeriodEngine {
         None
     }
 }
+
+/// Hands the event `at` to `observer` and counts it, in the run's counters
+/// and in its period's `(count, limit)`: more events than the limit in one
+/// period stop the run ([`SimulationError::TooManyEvents`], chattering).
+pub(crate) fn emit_event<O: Observer>(
+    counters: &mut WorkCounters,
+    (count, limit): (&mut u64, u64),
+    at: Event,
+    observer: &mut O,
+) -> Result<(), SimulationError> {
+    *count += 1;
+    counters.events.add(&at.kind);
+    if *count > limit {
+        return Err(SimulationError::TooManyEvents {
+            limit,
+            period: at.period,
+            phase: at.phase,
+        });
+    }
+    observer.event(&at);
+    Ok(())
+}
