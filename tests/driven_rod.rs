@@ -79,11 +79,16 @@ fn without_the_reaction_the_driven_rod_reproduces_the_prescribed_rod() {
 }
 
 /// With the reaction, the fixed-step reference (a different integrator of
-/// the same equations) converges to the exact engine at first order.
+/// the same equations) converges to the exact engine at first order: a
+/// least-squares slope of `log |error|` against `log h` over a factor 256
+/// in the step. The scene sticks and slips (`n = 3`, `sqrt(kappa) = 0.8`):
+/// in slip-slip the fixed-step map has whole bands of fixed points
+/// (docs/model.md section 12), which scatter its `v_inf` by about `1e-4`
+/// of itself at these steps and hide the order.
 #[test]
 fn with_the_reaction_the_fixed_step_reference_converges_at_first_order() {
-    let scene = driven(fourier(25e-6, 4.0, 3, true), DrivenSpec::default());
-    let steps = [250, 500, 1000, 2000, 4000];
+    let scene = driven(fourier(25e-6, 0.64, 3, true), DrivenSpec::default());
+    let steps = [250u32, 1000, 4000, 16000, 64000];
     let check = stickslip::check::check(&scene, &steps).expect("check runs");
     let exact = check.event.report.indicators.v_inf;
     let errors: Vec<f64> = check
@@ -92,15 +97,23 @@ fn with_the_reaction_the_fixed_step_reference_converges_at_first_order() {
         .map(|r| (r.report.indicators.v_inf - exact).abs())
         .collect();
     eprintln!("v_inf {exact:e}; errors {errors:?}");
-    // The error falls with the step: first order as a trend (the constant
-    // scatters with where events fall on the grid, docs/model.md section
-    // 12): a log-log slope near 1 over the range.
-    let slope = (errors[0] / errors[steps.len() - 1]).ln() / (16f64).ln();
+    let points: Vec<(f64, f64)> = steps
+        .iter()
+        .zip(&errors)
+        .map(|(s, e)| (-(*s as f64).ln(), e.ln()))
+        .collect();
+    let n = points.len() as f64;
+    let (mx, my) = (
+        points.iter().map(|p| p.0).sum::<f64>() / n,
+        points.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let slope = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
+        / points.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
     assert!(
         (0.7..1.5).contains(&slope),
         "order {slope}, errors {errors:?}"
     );
-    assert!(errors[steps.len() - 1] < 1e-3 * exact.abs());
+    assert!(errors[steps.len() - 1] < 1e-5 * exact.abs(), "{errors:?}");
 }
 
 /// The reaction matters where the friction force is large against the
