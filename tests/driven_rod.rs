@@ -169,6 +169,12 @@ fn a_driven_rod_needs_an_actuator_and_a_continuous_signal_from_rest() {
             format!("{base}rod = \"driven\"\n[actuator.real]\nstiffness = -1.0\n"),
             "actuator.real.stiffness",
         ),
+        // A mass of 3.2e-15 kg: free rates of 3e15 1/s, 1e12 time
+        // constants per period, more than the event search can walk.
+        (
+            format!("{base}rod = \"driven\"\n[actuator.real]\nmass = 3.2e-15\n"),
+            "actuator.real.mass",
+        ),
     ];
     for (text, field) in cases {
         let err = Scene::from_toml_str(&text, "<string>").expect_err(field);
@@ -524,14 +530,14 @@ fn inside_a_segment_the_driven_rod_obeys_the_actuator_equation_of_its_mode() {
     }
 }
 
-/// The example driven scene (`examples/actuator/driven_rod.toml`) is the
+/// The example driven scene (`examples/scenes/driven_rod.toml`) is the
 /// paper's motor at `n = 3`, `sqrt(kappa) = 2`, with an actuator 5 %
 /// stiffer than designed: it reads as that scene and runs to a steady
 /// state whose rod strays from its signal.
 #[test]
 fn the_example_driven_scene_is_the_stiffer_actuator() {
     let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/actuator/driven_rod.toml");
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/driven_rod.toml");
     let scene = Scene::from_path(&path).expect("the example reads");
     let expected = driven(
         fourier(25e-6, 4.0, 3, true),

@@ -464,6 +464,7 @@ impl Scene {
         }
         if let RodModel::Driven(spec) = &self.rod {
             check_driven(&self.signal, self.actuator.as_ref(), spec)?;
+            check_driven_rates(&self.signal, self.actuator.as_ref(), spec, &self.motor)?;
         }
         if self.run.steps_per_harmonic == 0 {
             return Err(ParamError::out_of_range(
@@ -539,4 +540,47 @@ fn check_driven(
             reason: "\"ideal\" jumps, which no actuator follows: a driven rod needs \"fourier\" or \"harmonics\"".to_owned(),
         }),
     }
+}
+
+/// Most time constants of the actuator's free motion in one drive period
+/// a driven rod accepts: the event search walks a period in pieces of the
+/// fastest one, so a million is about a tenth of a second per search.
+const MAX_RATE_PERIOD: f64 = 1e6;
+
+/// A driven rod whose actuator moves freely on a time scale far below the
+/// drive period (a vanishing mass, a huge stiffness) is refused: its
+/// fastest rate `sigma + sqrt(sigma^2 - omega_0^2) + omega_0` (with
+/// `sigma = d / 2M`, `omega_0^2 = c / M`, the real actuator in slip) times
+/// the period must not exceed [`MAX_RATE_PERIOD`]. The error names the
+/// field that set the mass.
+fn check_driven_rates(
+    signal: &SignalSpec,
+    actuator: Option<&ActuatorParams>,
+    spec: &DrivenSpec,
+    motor: &MotorParams,
+) -> Result<(), ParamError> {
+    let (Some(design), Ok(motor)) = (actuator, Motor::new(*motor)) else {
+        return Ok(());
+    };
+    let real = spec.real.apply(design)?;
+    let sigma = real.damping / (2.0 * real.mass);
+    let omega0 = (real.stiffness / real.mass).sqrt();
+    let rate = sigma + (sigma * sigma - omega0 * omega0).max(0.0).sqrt() + omega0;
+    let period = 1.0 / signal.f0(&motor);
+    if rate * period <= MAX_RATE_PERIOD {
+        return Ok(());
+    }
+    let field = if spec.real.mass.is_some() {
+        "actuator.real.mass"
+    } else {
+        "actuator.mass"
+    };
+    Err(ParamError::out_of_range(
+        field,
+        real.mass,
+        format!(
+            "the actuator's free motion (rate {rate:.3e} 1/s) is too fast for the drive period \
+             ({period:.3e} s): a driven rod needs rate x period <= {MAX_RATE_PERIOD:.0e}"
+        ),
+    ))
 }
