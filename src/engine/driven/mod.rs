@@ -91,6 +91,8 @@ pub struct DrivenEngine<'s> {
     max_events: u64,
     counters: WorkCounters,
     last_uncertainty: f64,
+    /// The largest bound on an event time's error in the last period (s).
+    last_time_error: f64,
 }
 
 /// The closed forms of `mode` among the three modes'.
@@ -136,6 +138,7 @@ impl<'s> DrivenEngine<'s> {
             max_events: max_events_per_period,
             counters: WorkCounters::default(),
             last_uncertainty: 0.0,
+            last_time_error: 4.0 * f64::EPSILON * period,
         }
     }
 
@@ -223,6 +226,7 @@ impl<'s> DrivenEngine<'s> {
             x: 0.0,
             v: boundary.slider_v,
             uncertainty: 0.0,
+            time_error: 4.0 * f64::EPSILON * self.period,
             events: 0,
             mode: Mode::Stick,
             departure: false,
@@ -248,6 +252,7 @@ impl<'s> DrivenEngine<'s> {
         }
         self.counters.periods += 1;
         self.last_uncertainty = walk.uncertainty;
+        self.last_time_error = walk.time_error;
         self.state = Some(DrivenState {
             rod_x: walk.rod.x,
             rod_v: walk.rod.v,
@@ -403,6 +408,7 @@ impl<'s> DrivenEngine<'s> {
         let a_old = self.contact.acceleration(old, a_st);
         let a_new = self.contact.acceleration(mode, a_st);
         walk.uncertainty += (a_old - a_new).abs() * time_error;
+        walk.time_error = walk.time_error.max(time_error);
         match mode {
             Mode::Stick => {
                 walk.uncertainty += (walk.rod.v - walk.v).abs();
@@ -470,6 +476,8 @@ struct Walk {
     /// Slider velocity (m/s).
     v: f64,
     uncertainty: f64,
+    /// The largest bound on an event time's error in the period (s).
+    time_error: f64,
     events: u64,
     mode: Mode,
     /// `v_rel = 0` at `tau` and the slip leaves zero: not an event again.
@@ -500,6 +508,12 @@ impl PeriodEngine for DrivenEngine<'_> {
 
     fn last_velocity_uncertainty(&self) -> Option<f64> {
         Some(self.last_uncertainty)
+    }
+
+    /// The largest event-time bound of the last period: the solver's
+    /// tolerance plus `eta / |v_rel'|` at each zero of `v_rel`.
+    fn event_time_uncertainty(&self) -> f64 {
+        self.last_time_error
     }
 
     fn carries_rod_state(&self) -> bool {

@@ -296,10 +296,20 @@ impl ModeFunctions {
             }
         };
         found.map(|c| match c {
+            // Where v_rel is known to within its rounding level eta only,
+            // its zero is known to within eta / |v_rel'| beyond the
+            // solver's own tolerance.
             Crossing::Transversal { s, .. } => SlipZero {
                 s,
                 tangency: false,
-                time_error,
+                time_error: time_error + {
+                    let slope = f.eval(s)[1].abs();
+                    if slope > 0.0 {
+                        f.eval_error_bound(span)[0] / slope
+                    } else {
+                        f64::INFINITY
+                    }
+                },
             },
             Crossing::Tangency { s } => SlipZero {
                 s,
