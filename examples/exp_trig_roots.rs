@@ -33,6 +33,8 @@ mod cases;
 #[path = "../src/numerics/exp_trig/mod.rs"]
 #[allow(dead_code)]
 mod exp_trig;
+#[path = "../src/numerics/power_of_two.rs"]
+mod power_of_two;
 
 // `cases.rs` finds the finder's names here (as `super::`).
 use exp_trig::{Crossing, DampedOscillator, ExpTrig, Start, Work};

@@ -124,6 +124,16 @@ fn scan_case(case: &DrivenCase, periods: u64) -> (Scan, Record, Model) {
     (driven_scan::scan(&model, &record), record, model)
 }
 
+/// Four periods of `case` from rest read as the scan reads them.
+fn assert_scan_agrees(case: &DrivenCase) {
+    let (scan, _, _) = scan_case(case, 4);
+    assert!(
+        scan.disagreements.is_empty(),
+        "{}",
+        scan.disagreements.join("\n")
+    );
+}
+
 /// Over 100 random driven scenes (random motor friction, `fourier` and
 /// `harmonics` signals of up to 8 harmonics, `kappa` from 0.5 to 20, real
 /// actuators off their design, the reaction on and off), four periods from
@@ -246,12 +256,7 @@ fn a_stick_phase_that_starts_on_a_band_edge_ends_when_a_st_leaves_it() {
             ..RealActuator::default()
         },
     );
-    let (scan, _, _) = scan_case(&case, 4);
-    assert!(
-        scan.disagreements.is_empty(),
-        "{}",
-        scan.disagreements.join("\n")
-    );
+    assert_scan_agrees(&case);
 }
 
 /// With `mu_d = mu_0`, a stick phase ends where `a_st` touches `a_0^+`
@@ -277,10 +282,5 @@ fn a_slip_whose_v_rel_turns_back_within_the_tolerance_ends_at_its_zero() {
             ..RealActuator::default()
         },
     );
-    let (scan, _, _) = scan_case(&case, 4);
-    assert!(
-        scan.disagreements.is_empty(),
-        "{}",
-        scan.disagreements.join("\n")
-    );
+    assert_scan_agrees(&case);
 }

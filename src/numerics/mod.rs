@@ -12,6 +12,7 @@
 //! * `line_fit`: least-squares lines and log-log slopes.
 //! * `quadrature`: Gauss-Legendre rules.
 //! * `dual`: forward-mode derivatives (dual numbers).
+//! * `power_of_two`: exact scaling by powers of two.
 //! * `taylor`: Taylor coefficients of a harmonic series about a point.
 
 pub(crate) mod bracket;
@@ -20,6 +21,7 @@ pub(crate) mod contour;
 pub(crate) mod dual;
 pub(crate) mod exp_trig;
 pub(crate) mod line_fit;
+mod power_of_two;
 pub(crate) mod quadrature;
 pub(crate) mod taylor;
 pub(crate) mod trig_roots;

@@ -133,8 +133,9 @@ impl ModeFunctions {
         }
     }
 
-    /// `a_st(tau + s) - level` for the rod state `(x, v)` at `tau`, where
-    /// this is the stick mode's function.
+    /// `a_R(tau + s) - level` of this mode for the rod state `(x, v)` at
+    /// `tau`: in stick the stuck system's acceleration against a band edge,
+    /// in slip `v_rel' = a_R - a_s`.
     pub(super) fn band_function(&self, tau: f64, x: f64, v: f64, level: f64) -> ExpTrig {
         let free = self.free(tau, Kinematics { x, v });
         ExpTrig {
@@ -287,7 +288,8 @@ impl ModeFunctions {
             found
         } else {
             counters.root_iterations += 1;
-            let slope = self.v_rel_rate(tau, rod, slider.1);
+            // v_rel' = a_R - a_s: the band function at the level a_s.
+            let slope = self.band_function(tau, rod.x, rod.v, slider.1);
             let tol = 4.0 * slope.eval_error_bound(span)[0];
             match slope.first_zero(0.0, span, tol, Start::Clear) {
                 Some(c) if f.eval(c.s())[0].abs() <= tol_v => Some(Crossing::Tangency { s: c.s() }),
@@ -317,18 +319,5 @@ impl ModeFunctions {
                 time_error,
             },
         })
-    }
-
-    /// `v_rel'(s) = a_R(tau + s) - a_s` in this slip mode.
-    fn v_rel_rate(&self, tau: f64, rod: Kinematics, a_s: f64) -> ExpTrig {
-        let free = self.free(tau, rod);
-        ExpTrig {
-            poly: [-a_s, 0.0, 0.0],
-            w: self.w,
-            phi: tau,
-            a: self.acc[0].clone(),
-            b: self.acc[1].clone(),
-            osc: Some(free.derivative().derivative()),
-        }
     }
 }

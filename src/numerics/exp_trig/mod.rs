@@ -198,6 +198,7 @@
 //! the caller keeps the interval short (a segment, at most a period).
 
 use super::bracket;
+use super::power_of_two::ldexp;
 
 mod oscillator;
 mod walk;
@@ -518,19 +519,6 @@ fn harmonic_sums(a: &[f64], b: &[f64], w: f64, theta: f64) -> [f64; 4] {
         t[3] -= q * q * q * odd;
     }
     t
-}
-
-/// `x · 2^e`, exact unless the result is subnormal.
-fn ldexp(mut x: f64, mut e: i32) -> f64 {
-    while e > 1000 {
-        x *= 2f64.powi(1000);
-        e -= 1000;
-    }
-    while e < -1000 {
-        x *= 2f64.powi(-1000);
-        e += 1000;
-    }
-    x * 2f64.powi(e)
 }
 
 #[cfg(test)]

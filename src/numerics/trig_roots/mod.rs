@@ -129,6 +129,7 @@
 //! polynomial ([`LevelRoots`]) about 0.1 ms and 0.8 ms. [`TrigPoly::eval`] and its derivative
 //! variants are `O(n)` with one `sin_cos` and no allocation.
 
+use super::power_of_two::ldexp;
 use std::f64::consts::TAU;
 use std::sync::{Arc, OnceLock};
 
@@ -649,19 +650,6 @@ impl LevelRoots {
     pub fn roots(&self, level: f64) -> Vec<f64> {
         self.roots_and_envelope(level).roots
     }
-}
-
-/// `x · 2^e`, exact unless the result is subnormal.
-fn ldexp(mut x: f64, mut e: i32) -> f64 {
-    while e > 1000 {
-        x *= 2f64.powi(1000);
-        e -= 1000;
-    }
-    while e < -1000 {
-        x *= 2f64.powi(-1000);
-        e += 1000;
-    }
-    x * 2f64.powi(e)
 }
 
 /// `theta` reduced to `[0, 2π)` (never `2π` itself, never `-0.0`).
