@@ -40,12 +40,17 @@ pub(crate) fn rounding_velocity_of(signal: &Signal, events: u64) -> f64 {
 /// The engine's bound on the boundary velocity of the periodic orbit
 /// through `steady` (m/s): the velocity error `u` one period introduces
 /// plus the rounding bound and the residual, carried to the fixed point as
-/// `/ (1 - P')`, plus `u` again for the steady period itself. `None` where
+/// `/ (1 - P')` (or the multi-dimensional
+/// [`SteadyState::boundary_bound`]), plus `u` again for the steady period
+/// itself. `None` where
 /// no bound holds: no engine bound, a grazing in the orbit (`u` infinite),
 /// or `P' >= 1` (a neutral map).
 fn engine_bound(signal: &Signal, steady: &SteadyState) -> Option<f64> {
     let u = steady.velocity_uncertainty.filter(|u| u.is_finite())?;
     let rounding_v = rounding_velocity(signal, steady);
+    if let Some(b) = steady.boundary_bound {
+        return b.is_finite().then_some(b + u + rounding_v);
+    }
     let contraction = 1.0 - steady.map_derivative;
     (contraction > 0.0).then(|| (u + rounding_v + steady.residual) / contraction + u + rounding_v)
 }

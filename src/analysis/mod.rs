@@ -54,3 +54,4 @@ pub use stats::{PeriodStats, StatsObserver, StatsWanted};
 pub(crate) use steady_state::steady_state_at;
 pub use steady_state::{SteadyIndicators, SteadyState, steady_state};
 pub use transient::{AnalysisOptions, Convergence, Transient, transient};
+pub(crate) use transient::{Attracted, transient_until};

@@ -32,6 +32,13 @@ pub struct SteadyState {
     pub velocity_uncertainty: Option<f64>,
     /// Bound on the error of each event time (s).
     pub event_time_uncertainty: f64,
+    /// Where the period map acts on more than the slider's velocity (a
+    /// driven rod, docs/model.md section 16): a bound on the boundary
+    /// velocity's error from the fixed point's residual and one period's
+    /// errors in every component, carried through `(I - dP/dz)^(-1)`. It
+    /// replaces the one-dimensional `/ (1 - P')` of the error estimate
+    /// ([`crate::analysis::error_estimate`]).
+    pub boundary_bound: Option<f64>,
 }
 
 /// The steady state reached from `guess`, with one period observed by
@@ -108,6 +115,7 @@ pub(crate) fn steady_state_at<E: PeriodEngine, O: Observer>(
         last_correction,
         velocity_uncertainty: engine.last_velocity_uncertainty(),
         event_time_uncertainty: engine.event_time_uncertainty(),
+        boundary_bound: None,
     })
 }
 

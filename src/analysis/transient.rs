@@ -71,6 +71,11 @@ pub enum Convergence {
     /// extrapolation, which a motion that slows down only for a while (past
     /// a near-tangency of the period map) can fool.
     Ratio,
+    /// It entered the linear attraction of a fixed point found by Newton on
+    /// the period map of a driven rod's boundary state (docs/model.md
+    /// section 16, "The steady state"): over the last periods it moved
+    /// towards the fixed point as the map's Jacobian there says.
+    Attracted,
 }
 
 impl Transient {
@@ -185,6 +190,35 @@ pub fn transient<E: PeriodEngine, O: Observer>(
     wanted: StatsWanted,
     observer: &mut O,
 ) -> Result<Transient, SimulationError> {
+    transient_until(engine, options, wanted, observer, |_, _, _| Ok(None))
+}
+
+/// Where a start-up was followed into the attraction of a fixed point
+/// found by other means ([`Convergence::Attracted`]): the distance of the
+/// last boundary velocity to the fixed point's (m/s), and the distance of
+/// the last period's `v_p` to the fixed point's `v_inf` (m/s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Attracted {
+    pub remaining: f64,
+    pub v_inf_error: f64,
+}
+
+/// [`transient`], with `settled` asked after every period (with the
+/// engine, the period's end and its events) whether the motion has
+/// entered the attraction of a known fixed point; it may run periods of
+/// its own on the engine, and leaves it as it found it.
+pub(crate) fn transient_until<E, O, F>(
+    engine: &mut E,
+    options: &AnalysisOptions,
+    wanted: StatsWanted,
+    observer: &mut O,
+    mut settled: F,
+) -> Result<Transient, SimulationError>
+where
+    E: PeriodEngine,
+    O: Observer,
+    F: FnMut(&mut E, &PeriodEnd, &EventCounts) -> Result<Option<Attracted>, SimulationError>,
+{
     let v_scale = engine.signal().velocity_scale();
     let crate::signal::VelocityRange {
         min: lo_r,
@@ -255,6 +289,12 @@ pub fn transient<E: PeriodEngine, O: Observer>(
         let ev = &stats.last.events;
         run_away = runaway(&end, ev.total() - ev.jump, change, (lo_r, hi_r));
         if run_away.is_some() {
+            break;
+        }
+        if let Some(a) = settled(engine, &end, &stats.last.events)? {
+            remaining = Some(a.remaining);
+            v_inf_error = Some(a.v_inf_error + tol);
+            converged_by = Some(Convergence::Attracted);
             break;
         }
         if rounded {

@@ -338,6 +338,21 @@ pub trait PeriodEngine {
     fn drive_profile(&self, _segments: &[Segment]) -> Option<DriveProfile> {
         None
     }
+
+    /// For an engine whose period map acts on a driven rod's boundary
+    /// state and that can start a period from any such state: the state
+    /// the last period ended in; `None` otherwise (and before the first
+    /// period).
+    fn boundary_state(&self) -> Option<DrivenState> {
+        None
+    }
+
+    /// Sets the state the next period (any but period 1 without a mode)
+    /// starts from, for an engine with [`PeriodEngine::boundary_state`];
+    /// false (and nothing set) for any other.
+    fn restart_from(&mut self, _state: DrivenState) -> bool {
+        false
+    }
 }
 
 /// Hands the event `at` to `observer` and counts it, in the run's counters

@@ -557,6 +557,12 @@ fn steady_text(r: &RunReport) -> String {
             out,
             "limit from rest: the start-up simulated to its own limit"
         ),
+        CertificateKind::Attracted => writeln!(
+            out,
+            "limit from rest: the fixed point of the period map on (x_R, v_R, v_S) by Newton, \
+             the start-up followed into its attraction ({} periods)",
+            r.transient.as_ref().map_or(0, |t| t.periods())
+        ),
     };
     if let Some(d) = c.other_fixed_point {
         let _ = writeln!(

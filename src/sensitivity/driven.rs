@@ -79,6 +79,61 @@ pub(crate) fn of_driven_period(
     period: f64,
     segments: &[Segment],
 ) -> Result<ActuatorSensitivities, String> {
+    let (end, step) = period_pass(rod, motor, period, segments)?;
+    let real = rod.real();
+    let jacobian = Matrix3::from_fn(|r, c| end[r].d[c]);
+    let by_parameter = Matrix3x4::from_fn(|r, c| end[r].d[3 + c]);
+    let step_by_state = RowVector3::from_fn(|_, c| step.d[c]);
+    let step_by_parameter = RowVector4::from_fn(|_, c| step.d[3 + c]);
+    let inverse = (Matrix3::identity() - jacobian)
+        .try_inverse()
+        .ok_or("the period map has a neutral direction at the steady state")?;
+    let dz = inverse * by_parameter;
+    let d_step = step_by_parameter + step_by_state * dz;
+    let values = [
+        real.mass,
+        real.damping,
+        real.stiffness,
+        real.transfer_factor,
+    ];
+    Ok(ActuatorSensitivities {
+        v_inf: step.v / period,
+        entries: FIELDS
+            .iter()
+            .zip(values)
+            .enumerate()
+            .map(|(k, ((field, unit), at))| ActuatorSensitivity {
+                field,
+                unit,
+                value: d_step[k] / period,
+                at,
+            })
+            .collect(),
+    })
+}
+
+/// The Jacobian `dP/dz` of the period map on the boundary state
+/// `z = (x_R, v_R, v_S)` over the period whose pieces are `segments`, the
+/// event structure held (the same pass as [`of_driven_period`]).
+pub(crate) fn period_map_jacobian(
+    rod: &DrivenRod,
+    motor: &Motor,
+    period: f64,
+    segments: &[Segment],
+) -> Result<Matrix3<f64>, String> {
+    let (end, _) = period_pass(rod, motor, period, segments)?;
+    Ok(Matrix3::from_fn(|r, c| end[r].d[c]))
+}
+
+/// One pass over the period on duals: the boundary state at its end and
+/// the slider's step, as functions of the state at its start and of the
+/// real actuator's parameters.
+fn period_pass(
+    rod: &DrivenRod,
+    motor: &Motor,
+    period: f64,
+    segments: &[Segment],
+) -> Result<([D; 3], D), String> {
     let pieces = merged(segments);
     let first = pieces.first().ok_or("no steady period recorded")?;
     let real = rod.real();
@@ -162,36 +217,7 @@ pub(crate) fn of_driven_period(
             w = v;
         }
     }
-    let end = [x, v, w];
-    let jacobian = Matrix3::from_fn(|r, c| end[r].d[c]);
-    let by_parameter = Matrix3x4::from_fn(|r, c| end[r].d[3 + c]);
-    let step_by_state = RowVector3::from_fn(|_, c| step.d[c]);
-    let step_by_parameter = RowVector4::from_fn(|_, c| step.d[3 + c]);
-    let inverse = (Matrix3::identity() - jacobian)
-        .try_inverse()
-        .ok_or("the period map has a neutral direction at the steady state")?;
-    let dz = inverse * by_parameter;
-    let d_step = step_by_parameter + step_by_state * dz;
-    let values = [
-        real.mass,
-        real.damping,
-        real.stiffness,
-        real.transfer_factor,
-    ];
-    Ok(ActuatorSensitivities {
-        v_inf: step.v / period,
-        entries: FIELDS
-            .iter()
-            .zip(values)
-            .enumerate()
-            .map(|(k, ((field, unit), at))| ActuatorSensitivity {
-                field,
-                unit,
-                value: d_step[k] / period,
-                at,
-            })
-            .collect(),
-    })
+    Ok(([x, v, w], step))
 }
 
 /// Consecutive pieces of the same mode as one (the engine cuts stick

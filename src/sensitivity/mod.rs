@@ -48,8 +48,8 @@ mod selection;
 mod structure;
 mod tangent;
 
-pub(crate) use driven::of_driven_period;
 pub use driven::{ActuatorSensitivities, ActuatorSensitivity};
+pub(crate) use driven::{of_driven_period, period_map_jacobian};
 pub use parameter::{Parameter, VariedScene};
 pub use structure::ChangeKind;
 

@@ -129,4 +129,12 @@ impl<E: PeriodEngine> PeriodEngine for TimeBudget<E> {
     ) -> Option<crate::engine::DriveProfile> {
         self.engine.drive_profile(segments)
     }
+
+    fn boundary_state(&self) -> Option<crate::engine::DrivenState> {
+        self.engine.boundary_state()
+    }
+
+    fn restart_from(&mut self, state: crate::engine::DrivenState) -> bool {
+        self.engine.restart_from(state)
+    }
 }

@@ -3,9 +3,11 @@
 //! needs it, the check that the two agree, and the error estimates.
 
 use super::certified::{Search, bracketed_v_inf, certified_limit, covering_search};
+use super::driven::Settle;
 use super::{
     CertificateKind, Outcome, RunReport, SteadyStateCertificate, SteadyStateCheck, Unsettled,
 };
+use crate::actuator::DrivenRod;
 use crate::analysis::certificate::CERTIFIED_REACH;
 use crate::analysis::error_estimate::{
     established_bound, estimate_errors, startup_error, v_inf_error,
@@ -35,10 +37,15 @@ fn orbit_passes(transient: &Transient, periods: u64, v_star: f64, bound: f64) ->
     }
 }
 
+/// The simulation of `scene` on `engine`; `rod` is the driven rod of an
+/// engine whose period map acts on the rod's state as well
+/// ([`PeriodEngine::boundary_state`]): its fixed point is then found by
+/// Newton ([`super::driven`]).
 pub(super) fn simulate_timed<E: PeriodEngine>(
     engine: E,
     scene: &Scene,
     motor: &Motor,
+    rod: Option<&DrivenRod>,
     setup_clock: Instant,
 ) -> Result<Outcome, Error> {
     let setup_time = setup_clock.elapsed();
@@ -206,6 +213,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         }
     };
     let from_orbit = fast.is_none();
+    let mut newton = false;
     let (steady, transient) = match fast {
         Some(found) => found,
         None => {
@@ -224,7 +232,18 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                 options.ratio_rule = ratio_rule;
                 event_log = scene.outputs.events.then(EventLog::default);
                 trajectory = scene.outputs.trajectory.then(Trajectory::default);
-                let transient = analysis::transient(&mut engine, &options, wanted, &mut event_log)?;
+                let mut settle =
+                    rod.map(|rod| Settle::new(rod, motor, &signal, !verify, needs_startup));
+                let transient = match settle.as_mut() {
+                    Some(settle) => analysis::transient_until(
+                        &mut engine,
+                        &options,
+                        wanted,
+                        &mut event_log,
+                        |engine, end, events| settle.after_period(engine, end, events),
+                    )?,
+                    None => analysis::transient(&mut engine, &options, wanted, &mut event_log)?,
+                };
                 if transient.run_away.is_some() || !transient.converged {
                     return Ok(unsettled(
                         &engine,
@@ -234,6 +253,40 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                         rest_fixed_point,
                         (setup_time, clock.elapsed()),
                     ));
+                }
+                if let Some(settle) = &settle {
+                    map_evaluations += settle.evaluations;
+                }
+                if let Some((settle, fixed)) = settle
+                    .as_ref()
+                    .and_then(|s| s.fixed.as_ref().map(|f| (s, f)))
+                    && (transient.converged_by == Some(Convergence::Attracted) || verify)
+                {
+                    // The fixed point Newton found, which the start-up
+                    // entered the attraction of (or, verifying, which the
+                    // start-up ran on to its own limit beside).
+                    let before = engine.counters().periods;
+                    engine.restart_from(fixed.state);
+                    let mut steady = analysis::steady_state_at(
+                        &mut engine,
+                        PeriodStart {
+                            velocity: fixed.state.slider_v,
+                            mode: Some(fixed.state.mode),
+                        },
+                        (Some(fixed.radius), fixed.iterations, fixed.last_correction),
+                        wanted,
+                        &mut trajectory,
+                    )?;
+                    map_evaluations += engine.counters().periods - before;
+                    steady.boundary_bound = steady.velocity_uncertainty.map(|u| {
+                        settle.boundary_bound(fixed, &signal, u, steady.stats.events.total())
+                    });
+                    if transient.converged_by == Some(Convergence::Attracted) {
+                        certificate.kind = CertificateKind::Attracted;
+                    }
+                    newton = true;
+                    settled = Some((steady, Some(transient)));
+                    break;
                 }
                 let before = engine.counters().periods;
                 let mut steady = orbit_steady(&mut engine, &transient, wanted, &mut trajectory)?;
@@ -292,6 +345,8 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
             (setup_time, clock.elapsed()),
         ));
     }
+    // Newton's fixed point is not the start-up's own limit.
+    let from_orbit = from_orbit && !newton;
     let indicators = steady.indicators(motor, period);
     let mut error = estimate_errors(
         &signal,

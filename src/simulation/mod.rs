@@ -92,6 +92,7 @@ pub(crate) mod budget;
 mod cache;
 mod certified;
 mod drive;
+mod driven;
 mod outcome;
 
 pub use crate::analysis::ErrorEstimate;
@@ -195,7 +196,7 @@ pub(super) fn simulate_built(
                         event.velocity_tolerance,
                         event.max_events_per_period,
                     );
-                    simulate_timed(engine, scene, motor, clock)?
+                    simulate_timed(engine, scene, motor, Some(&rod), clock)?
                 }
                 EngineKind::Fixed => {
                     let options = FixedStepOptions {
@@ -203,13 +204,13 @@ pub(super) fn simulate_built(
                         ..FixedStepOptions::default()
                     };
                     let engine = FixedStepEngine::driven(signal, motor, &rod, options);
-                    simulate_timed(engine, scene, motor, clock)?
+                    simulate_timed(engine, scene, motor, None, clock)?
                 }
             }
         }
         (RodModel::Prescribed, EngineKind::Event) => {
             let engine = EventEngine::new(signal, motor, event);
-            simulate_timed(engine, scene, motor, clock)?
+            simulate_timed(engine, scene, motor, None, clock)?
         }
         (RodModel::Prescribed, EngineKind::Fixed) => {
             let options = FixedStepOptions {
@@ -217,7 +218,7 @@ pub(super) fn simulate_built(
                 ..FixedStepOptions::default()
             };
             let engine = FixedStepEngine::new(signal, motor, options);
-            simulate_timed(engine, scene, motor, clock)?
+            simulate_timed(engine, scene, motor, None, clock)?
         }
     };
     let wall = clock.elapsed();
@@ -274,7 +275,7 @@ impl Outcome {
         scene: &Scene,
         motor: &Motor,
     ) -> Result<Outcome, Error> {
-        simulate_timed(engine, scene, motor, Instant::now())
+        simulate_timed(engine, scene, motor, None, Instant::now())
     }
 }
 

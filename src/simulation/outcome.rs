@@ -60,14 +60,20 @@ pub enum CertificateKind {
     /// periods with a stick phase, or a remaining distance bounded by the measured
     /// contraction).
     Orbit,
+    /// A driven rod: the fixed point of the period map on the rod's and
+    /// the slider's boundary state was found by Newton, and the start-up
+    /// from rest was followed into its attraction (docs/model.md section
+    /// 16, "The steady state").
+    Attracted,
 }
 
 impl CertificateKind {
-    /// Name in reports: `covering`, `orbit`.
+    /// Name in reports: `covering`, `orbit`, `attracted`.
     pub fn name(self) -> &'static str {
         match self {
             CertificateKind::Covering => "covering",
             CertificateKind::Orbit => "orbit",
+            CertificateKind::Attracted => "attracted",
         }
     }
 }

@@ -528,4 +528,13 @@ impl PeriodEngine for DrivenEngine<'_> {
             self.functions(mode)
         }))
     }
+
+    fn boundary_state(&self) -> Option<DrivenState> {
+        self.state
+    }
+
+    fn restart_from(&mut self, state: DrivenState) -> bool {
+        self.state = Some(state);
+        true
+    }
 }

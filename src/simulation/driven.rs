@@ -1,0 +1,336 @@
+//! The steady state of a driven rod (docs/model.md section 16, "The
+//! steady state"): the fixed point of the period map on the boundary
+//! state `z = (x_R, v_R, v_S)`, found by Newton with the exact Jacobian,
+//! and the start-up from rest followed into its attraction.
+//!
+//! ## Newton
+//! Once the start-up's periods have had the same event counts for
+//! [`STABLE`] periods in a row, Newton starts from its boundary state:
+//!
+//! ```text
+//! z_(i+1) = z_i + (I - J(z_i))^(-1) (P(z_i) - z_i)
+//! ```
+//!
+//! with `P(z_i)` a period of the engine from `z_i` and `J = dP/dz` the
+//! exact Jacobian of that period, its event structure held
+//! ([`crate::sensitivity::period_map_jacobian`]: every event time moves
+//! by the implicit function theorem). It stops when the correction is
+//! below `1e-13` of the scales (`x`: the signal's stroke, `v`: its largest
+//! velocity), applied once more; where it does not converge in
+//! [`NEWTON`] iterations, or a period holds a grazing, it is tried again
+//! after twice as many periods of the start-up.
+//!
+//! ## The motion from rest decides
+//! A fixed point is the steady state only if the motion from rest goes
+//! to it. Its attraction is judged on the start-up's own periods, in the
+//! scaled coordinates `e = S^(-1) (z - z*)`:
+//! * the spectral radius of `J` is below 1, and `m` is the least number
+//!   of periods with `||J^m|| <= 1/2` (at most [`WINDOW`]): over `m`
+//!   periods the linearised map halves every deviation;
+//! * the last `m + 1` periods of the start-up had the fixed point's event
+//!   counts and boundary mode, and its deviation `m` periods ago went
+//!   where the linearised map sends it, to within a quarter of itself:
+//!   `||e_k - J^m e_(k-m)|| <= ||e_(k-m)|| / 4`. The `m`-period map then
+//!   shrinks the deviation by at least `3/4` there;
+//! * or the deviation is below `1e-12` (the start-up is at the fixed
+//!   point within rounding).
+//!
+//! This is evidence measured along the motion (the nonlinear part of the
+//! map is checked where the motion is, not bounded over a region), as the
+//! exact repetition it replaces was. Without it (no fixed point found,
+//! not attracting, never entered) the start-up runs on to an exact
+//! repetition, as before.
+//!
+//! ## The fixed point's error
+//! The engine's errors of one period, componentwise `delta` (rounding of
+//! positions and velocities, `8 eps` per segment of the scales; the
+//! slider's velocity bound `u` from event times and decisions, and the
+//! rod's share of it, `u m_s / M`, since the same force jump acts on
+//! both), and the fixed point's residual `r`, are carried to the boundary
+//! velocity by the third row of `(I - J)^(-1)`:
+//! `|dv_S| <= sum_j |G_3j| (delta_j + r_j)` (the
+//! [`crate::analysis::SteadyState::boundary_bound`]).
+
+use crate::actuator::DrivenRod;
+use crate::analysis::error_estimate::rounding_velocity_of;
+use crate::analysis::{Attracted, StatsObserver, StatsWanted};
+use crate::engine::{DrivenState, EventCounts, PeriodEnd, PeriodEngine, PeriodStart};
+use crate::error::SimulationError;
+use crate::motor::Motor;
+use crate::observer::Trajectory;
+use crate::signal::Signal;
+use nalgebra::{Matrix3, Vector3};
+use std::collections::VecDeque;
+
+/// Periods with the same event counts before Newton is tried.
+const STABLE: u32 = 8;
+
+/// Newton iterations at most.
+const NEWTON: u32 = 16;
+
+/// Largest window `m` of the attraction test (periods).
+const WINDOW: usize = 4096;
+
+/// Scaled deviation below which the start-up is at the fixed point within
+/// rounding.
+const AT_FIXED_POINT: f64 = 1e-12;
+
+/// Scaled Newton correction below which it has converged.
+const CONVERGED: f64 = 1e-13;
+
+/// A fixed point of the period map of a driven rod.
+#[derive(Debug, Clone)]
+pub(crate) struct FixedPoint {
+    /// The boundary state, with the mode the period ends in.
+    pub state: DrivenState,
+    /// `dP/dz` there.
+    pub jacobian: Matrix3<f64>,
+    /// The spectral radius of `dP/dz`.
+    pub radius: f64,
+    /// Events of the period from it.
+    pub events: EventCounts,
+    /// `v_inf` of the period from it (m/s).
+    pub v_inf: f64,
+    /// Newton iterations.
+    pub iterations: u32,
+    /// The last correction of the slider's velocity (m/s).
+    pub last_correction: f64,
+    /// `|P(z) - z|` of the last evaluation, componentwise.
+    pub residual: Vector3<f64>,
+    /// The window `m` and `J^m` in scaled coordinates.
+    window: usize,
+    power: Matrix3<f64>,
+    /// `max_(j <= m) ||J^j||`, scaled: how far a deviation may grow on
+    /// its way in.
+    reach: f64,
+}
+
+/// The start-up's test for a driven rod ([`crate::analysis::transient_until`]).
+pub(crate) struct Settle<'a> {
+    rod: &'a DrivenRod,
+    motor: &'a Motor,
+    period: f64,
+    scales: Vector3<f64>,
+    /// False: the fixed point is found, the start-up is never stopped.
+    accept: bool,
+    /// Also wait for `p_0.99`.
+    startup: bool,
+    reached_startup: bool,
+    periods: u64,
+    stable: u32,
+    last_events: Option<EventCounts>,
+    next_try: u64,
+    /// Deviations of the last periods from the fixed point, scaled.
+    deviations: VecDeque<Vector3<f64>>,
+    /// The fixed point, once found.
+    pub fixed: Option<FixedPoint>,
+    /// Periods run by Newton.
+    pub evaluations: u64,
+}
+
+fn vector(z: &DrivenState) -> Vector3<f64> {
+    Vector3::new(z.rod_x, z.rod_v, z.slider_v)
+}
+
+impl<'a> Settle<'a> {
+    /// The test for `rod` under `motor` with `signal`'s scales; `accept`
+    /// false only finds the fixed point; `startup`: the start-up also runs
+    /// to `p_0.99`.
+    pub(super) fn new(
+        rod: &'a DrivenRod,
+        motor: &'a Motor,
+        signal: &Signal,
+        accept: bool,
+        startup: bool,
+    ) -> Self {
+        let v = signal.velocity_scale().max(f64::MIN_POSITIVE);
+        let x = signal.position_scale().max(f64::MIN_POSITIVE);
+        Self {
+            rod,
+            motor,
+            period: signal.period(),
+            scales: Vector3::new(x, v, v),
+            accept,
+            startup,
+            reached_startup: false,
+            periods: 0,
+            stable: 0,
+            last_events: None,
+            next_try: 0,
+            deviations: VecDeque::new(),
+            fixed: None,
+            evaluations: 0,
+        }
+    }
+
+    /// After period `end` of the start-up with `events`: whether it has
+    /// entered the fixed point's attraction (module docs).
+    pub(super) fn after_period<E: PeriodEngine>(
+        &mut self,
+        engine: &mut E,
+        end: &PeriodEnd,
+        events: &EventCounts,
+    ) -> Result<Option<Attracted>, SimulationError> {
+        self.periods += 1;
+        let Some(z) = engine.boundary_state() else {
+            return Ok(None);
+        };
+        self.stable = if self.last_events == Some(*events) {
+            self.stable + 1
+        } else {
+            0
+        };
+        self.last_events = Some(*events);
+        if self.fixed.is_none() && self.stable >= STABLE && self.periods >= self.next_try {
+            self.fixed = self.newton(engine, z)?;
+            engine.restart_from(z);
+            if self.fixed.is_none() {
+                self.next_try = 2 * self.periods;
+            }
+        }
+        let Some(f) = &self.fixed else {
+            return Ok(None);
+        };
+        let v_p = end.step / self.period;
+        if f.v_inf != 0.0 && (v_p / f.v_inf) >= 0.99 {
+            self.reached_startup = true;
+        }
+        if *events != f.events || z.mode != f.state.mode {
+            self.deviations.clear();
+            return Ok(None);
+        }
+        let e = (vector(&z) - vector(&f.state)).component_div(&self.scales);
+        self.deviations.push_back(e);
+        if self.deviations.len() > f.window + 1 {
+            self.deviations.pop_front();
+        }
+        if !self.accept || (self.startup && !self.reached_startup && f.v_inf != 0.0) {
+            return Ok(None);
+        }
+        let at = e.norm() <= AT_FIXED_POINT;
+        let attracted = self.deviations.len() == f.window + 1 && {
+            let first = self.deviations[0];
+            (e - f.power * first).norm() <= 0.25 * first.norm() + AT_FIXED_POINT
+        };
+        if !(at || attracted) {
+            return Ok(None);
+        }
+        Ok(Some(Attracted {
+            remaining: f.reach * e.norm() * self.scales[2],
+            v_inf_error: (v_p - f.v_inf).abs(),
+        }))
+    }
+
+    /// Newton on the period map from `z` (module docs); `None` where it
+    /// does not converge, a period holds a grazing, or the fixed point is
+    /// not attracting.
+    fn newton<E: PeriodEngine>(
+        &mut self,
+        engine: &mut E,
+        mut z: DrivenState,
+    ) -> Result<Option<FixedPoint>, SimulationError> {
+        for iteration in 1..=NEWTON {
+            engine.restart_from(z);
+            let mut stats = StatsObserver::for_engine(&*engine, StatsWanted::default());
+            let mut recorded = Trajectory::default();
+            let end = engine.run_period(
+                2,
+                PeriodStart {
+                    velocity: z.slider_v,
+                    mode: Some(z.mode),
+                },
+                &mut (&mut stats, &mut recorded),
+            )?;
+            self.evaluations += 1;
+            let Some(p) = engine.boundary_state() else {
+                return Ok(None);
+            };
+            let Ok(jacobian) = crate::sensitivity::period_map_jacobian(
+                self.rod,
+                self.motor,
+                self.period,
+                &recorded.segments,
+            ) else {
+                return Ok(None);
+            };
+            let residual = vector(&p) - vector(&z);
+            let Some(dz) = (Matrix3::identity() - jacobian).lu().solve(&residual) else {
+                return Ok(None);
+            };
+            if !dz.iter().all(|d| d.is_finite()) {
+                return Ok(None);
+            }
+            let correction = dz.component_div(&self.scales).norm();
+            let next = vector(&z) + dz;
+            z = DrivenState {
+                rod_x: next[0],
+                rod_v: next[1],
+                slider_v: next[2],
+                mode: p.mode,
+            };
+            if correction <= CONVERGED {
+                return Ok(self.attracting(FixedPoint {
+                    state: z,
+                    jacobian,
+                    radius: 0.0,
+                    events: stats.last.events,
+                    v_inf: end.step / self.period,
+                    iterations: iteration,
+                    last_correction: dz[2].abs(),
+                    residual: residual.abs(),
+                    window: 0,
+                    power: Matrix3::identity(),
+                    reach: 1.0,
+                }));
+            }
+        }
+        Ok(None)
+    }
+
+    /// `f` with its spectral radius and window, if it attracts: the
+    /// spectral radius below 1 and `||J^m|| <= 1/2` for some `m <=`
+    /// [`WINDOW`].
+    fn attracting(&self, mut f: FixedPoint) -> Option<FixedPoint> {
+        let scaled = Matrix3::from_fn(|r, c| f.jacobian[(r, c)] * self.scales[c] / self.scales[r]);
+        f.radius = scaled
+            .complex_eigenvalues()
+            .iter()
+            .map(|l| l.norm())
+            .fold(0.0, f64::max);
+        if f.radius.is_nan() || f.radius >= 1.0 {
+            return None;
+        }
+        let mut power = Matrix3::identity();
+        for m in 1..=WINDOW {
+            power = scaled * power;
+            let norm = power.norm();
+            f.reach = f.reach.max(norm);
+            if norm <= 0.5 {
+                f.window = m;
+                f.power = power;
+                return Some(f);
+            }
+        }
+        None
+    }
+
+    /// The bound on the fixed point's boundary velocity (module docs, "The
+    /// fixed point's error"), with `u` the engine's velocity bound of the
+    /// steady period and `events` its events.
+    pub(super) fn boundary_bound(
+        &self,
+        f: &FixedPoint,
+        signal: &Signal,
+        u: f64,
+        events: u64,
+    ) -> f64 {
+        let Some(g) = (Matrix3::identity() - f.jacobian).try_inverse() else {
+            return f64::INFINITY;
+        };
+        let rounding_v = rounding_velocity_of(signal, events);
+        let rounding_x = 8.0 * f64::EPSILON * (events as f64 + 2.0) * signal.position_scale();
+        let share = self.motor.params().slider_mass / self.rod.real().mass;
+        let delta = Vector3::new(rounding_x, rounding_v + share * u, rounding_v + u) + f.residual;
+        (0..3).map(|j| g[(2, j)].abs() * delta[j]).sum()
+    }
+}
