@@ -56,6 +56,8 @@
 //!    slider and its friction), [`power`] (the actuator's input power,
 //!    section 6.3 of the paper); [`actuator`]: the rod driven by a voltage
 //!    through the actuator's equation, with the friction acting back on it;
+//!    [`spring`]: a spring against the slider (the spring method of
+//!    measuring force, section 5 of the paper);
 //! 3. [`engine`]: walks the slider through time and hands every exact
 //!    segment, event and period end to an [`engine::Observer`];
 //!    `engine/<method>.rs` is one engine ([`engine::EventEngine`], the
@@ -120,6 +122,7 @@ pub mod scene;
 pub mod sensitivity;
 pub mod signal;
 pub mod simulation;
+pub mod spring;
 pub mod sweep;
 pub mod symbol;
 

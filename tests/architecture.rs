@@ -23,6 +23,7 @@ const LAYERS: &[&[&str]] = &[
     ],
     &["output"],
     &["motor"],
+    &["spring"],
     &["signal"],
     &["power"],
     &["actuator"],
