@@ -532,15 +532,18 @@ fn read_end(model: &Model, seg: &Segment, [x, v]: [f64; 2], out: &mut Scan) -> R
     };
     // The band at the zero. At a crossing inside the period, a_st is read
     // where the scan puts the zero, `f0 / f1` before the end, and the zero
-    // is known to `(loc_v + err_v) / |v_rel'|` (where the engine may put it
-    // and the scan's own error): a_st moves by `|a_st'|` times that.
-    let (a_zero, zero_reach) = if touch || at_period_end {
+    // is known to `e / |v_rel'|` with `e = loc_v + err_v` (where the engine
+    // may put it and the scan's own error): a_st moves by `|a_st'|` times
+    // that. Near a tangency (`e / |v_rel'| > sqrt(2 e / |v_rel''|)`) the
+    // line says nothing and the band is read at the end.
+    let e = t.loc_v + t.err_v;
+    let near_tangency = e / f1.abs() > (2.0 * e / f2.abs()).sqrt();
+    let (a_zero, zero_reach) = if touch || at_period_end || near_tangency {
         (a_st, t.loc_a)
     } else {
-        let resolution = (t.loc_v + t.err_v) / f1.abs();
         (
             a_st - da_st * f0 / f1,
-            t.loc_a + t.err_a + da_st.abs() * resolution,
+            t.loc_a + t.err_a + da_st.abs() * e / f1.abs(),
         )
     };
     // On an edge, a zero of v_rel and a crossing of the edge coincide to
@@ -626,7 +629,11 @@ fn scan_slip(model: &Model, sol: &Solution, seg: &Segment, dir: Direction, out: 
             let c = bisect(|s| f(s).1, prev_s, s, model.period, &mut count);
             let m = f(c).0;
             if c > edge && c < span - edge && m >= -(t.tol_v + t.loc_v) {
-                if m <= t.tol_v - t.err_v {
+                if m <= t.tol_v - t.err_v && exit_could_be_at(model, sol, seg, dir, c) {
+                    // The slip's start: its exit from a stick phase lies here
+                    // within its allowance.
+                    out.near += 1;
+                } else if m <= t.tol_v - t.err_v {
                     out.missed += 1;
                     out.disagreements.push(format!(
                         "v_rel = {m:e} at a critical point {c:e} s into {seg:?}"
@@ -641,6 +648,25 @@ fn scan_slip(model: &Model, sol: &Solution, seg: &Segment, dir: Direction, out: 
         prev_s = s;
     }
     out.samples += SAMPLES + 1 + count;
+}
+
+/// Whether the slip `seg` (direction `dir`) starts from rest on the rod
+/// (`|v_rel| <= tol_v`) and the stuck system's `a_st` at `c` seconds into
+/// it lies within the exit allowance `loc_a + |a_st'| dt` of the edge the
+/// slip leaves: a stick exit placed at `c` would be right, so a critical
+/// point of `v_rel` there is the slip's own start, not a touch.
+fn exit_could_be_at(model: &Model, sol: &Solution, seg: &Segment, dir: Direction, c: f64) -> bool {
+    let t = model.tol;
+    let v_rel_0 = seg.rod_start.v - seg.slider_start.v;
+    let [x, v, _, _] = sol.at(c);
+    let stick = model.ode(Mode::Stick);
+    let tau = seg.start + c;
+    let (a, da) = (stick.acceleration(tau, x, v), stick.jerk(tau, x, v));
+    let edge = match dir {
+        Direction::Forward => model.a_plus,
+        Direction::Backward => model.a_minus,
+    };
+    v_rel_0.abs() <= t.tol_v && (a - edge).abs() <= t.loc_a + da.abs() * t.dt
 }
 
 /// `a_st` stays in the band inside the segment, its extrema included.

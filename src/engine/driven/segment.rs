@@ -150,7 +150,13 @@ impl ModeFunctions {
     /// and the band `[lo, hi]` (this being the stick mode's functions): the
     /// functions the stick search follows, whose values at `s = 0` also
     /// decide the band where a stick phase may start.
-    pub(super) fn edge_functions(&self, tau: f64, x: f64, v: f64, [lo, hi]: [f64; 2]) -> [ExpTrig; 2] {
+    pub(super) fn edge_functions(
+        &self,
+        tau: f64,
+        x: f64,
+        v: f64,
+        [lo, hi]: [f64; 2],
+    ) -> [ExpTrig; 2] {
         [
             self.band_function(tau, x, v, hi),
             self.band_function(tau, x, v, lo),
@@ -230,10 +236,7 @@ impl ModeFunctions {
             if outward && disc >= 0.0 {
                 // The smaller positive root of -depth + p s + q s^2 / 2.
                 let s = 2.0 * depth / (p + disc.sqrt());
-                return StickExit::Leaves {
-                    s: s.min(span),
-                    to,
-                };
+                return StickExit::Leaves { s: s.min(span), to };
             }
         }
         let mut from = 0.0;
