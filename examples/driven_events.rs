@@ -19,13 +19,13 @@
 //! allowance an event used, and the kinds of disagreement.
 //! `tests/driven_events.rs` asserts the same on 100 random scenes.
 //!
-//! Random scenes agree with the scan. At changes of the event structure
-//! the scan finds events the engine misses: a stick phase that starts
-//! with `a_st` on a band edge and leaving it, whose exit the stick search
-//! takes for the departure from the event before; and a slip whose
-//! `v_rel` leaves zero but turns back within `tol_v` and crosses it, which
-//! the slip search takes for its departure too. `tests/driven_events.rs`
-//! holds one scene of each (ignored while the engine misses them).
+//! Both sets agree with the scan (seed 1: 1000 random scenes, and 234
+//! placed at 117 changes). At a zero of `v_rel` the scan reads the band
+//! where it puts the zero, and a reading within the zero's resolution of a
+//! band edge (`|a_st'|` times `(loc_v + err_v) / |v_rel'|`, plus `loc_a +
+//! err_a`) is right either way: a stick phase or slip that short is below
+//! what either side resolves. The example prints how many readings that
+//! was and the largest distance from the edge against its allowance.
 //!
 //! `cargo run --release --example driven_events [-- SCENES [PAIRS [PERIODS [SEED]]]]`
 //! (defaults: 1000 scenes, 200 pairs, 4 periods, seed 1).
@@ -101,6 +101,19 @@ fn report(title: &str, cases: &[DrivenCase], periods: u64) {
         total.ambiguous,
         total.near
     );
+    if let Some(worst) = total
+        .at_zero
+        .iter()
+        .max_by(|a, b| (a[0] / a[1]).total_cmp(&(b[0] / b[1])))
+    {
+        println!(
+            "  of those, at zeros of v_rel within the zero's resolution of a band edge: {}, \
+             the farthest {:.2e} m/s^2 from the edge against an allowance of {:.2e}",
+            total.at_zero.len(),
+            worst[0],
+            worst[1]
+        );
+    }
     println!(
         "  rod state at segment ends, engine against scan: largest difference {:.1e} of its \
          scale; events: largest distance from their crossing {:.2} of the allowance",

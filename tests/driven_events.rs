@@ -284,3 +284,38 @@ fn a_slip_whose_v_rel_turns_back_within_the_tolerance_ends_at_its_zero() {
     );
     assert_scan_agrees(&case);
 }
+
+/// From rest the stuck system's `a_st` lies inside the band by 2.7e-10
+/// m/s^2 and rises at 1.04e6 m/s^3 (a single harmonic, `mu_d` just below
+/// `mu_0`); by a 50-digit evaluation of the closed form it crosses
+/// `a_0^+` after 2.6e-16 s and is 0.05 m/s^2 above it 4.6e-8 s later. The
+/// band decision and the stick search read the distance from the edge from
+/// two evaluations that differed in the last bits, right at the search's
+/// tolerance: the decision said inside, the search on the edge, and took
+/// the exit for the start; the slider stayed stuck for 9.4e-5 s.
+#[test]
+fn a_stick_phase_from_rest_just_inside_a_band_edge_leaves_it() {
+    let case = scene(
+        MotorParams {
+            slider_mass: 0.00915566061106585,
+            contact_force: 44.41049383916847,
+            mu_static: 0.10218733353631587,
+            mu_dynamic: 0.10202146150001085,
+            extra_acceleration: 0.0,
+        },
+        SignalSpec::Harmonics {
+            frequency: 3127.218123029408,
+            amplitudes: vec![1.4722998326449234e-5],
+            phases: vec![1.6714635608256279],
+            scale_to_stroke: Some(9.914318950829246e-6),
+            shift_to_minimum: true,
+        },
+        true,
+        RealActuator {
+            damping: Some(10.737486815189442),
+            stiffness: Some(26381369.25678998),
+            ..RealActuator::default()
+        },
+    );
+    assert_scan_agrees(&case);
+}

@@ -78,6 +78,8 @@ pub struct Tolerances {
     pub tol_v: f64,
     /// Error of the scan's `v_rel` (m/s).
     pub err_v: f64,
+    /// Error of the scan's `a_st` (m/s^2).
+    pub err_a: f64,
     /// Error of the scan's `a_st'` (m/s^3).
     pub err_da: f64,
     /// How far from zero `v_rel` may be where the engine puts a zero
@@ -190,6 +192,7 @@ impl Model {
             tol: Tolerances {
                 tol_v,
                 err_v: ROUNDING * eps * scale_v,
+                err_a,
                 err_da: err_a * rate,
                 loc_v: LOCATION * eps * scale_v,
                 loc_a: LOCATION * eps * scale_a,
@@ -252,6 +255,10 @@ pub struct Scan {
     /// Largest `|v_rel|` at a transversal zero and `|a_st - edge|` at an
     /// exit, as a fraction of the allowance `loc + |slope| dt`.
     pub offset: f64,
+    /// Ambiguous readings at zeros of `v_rel` inside the period: the
+    /// distance of `a_st` from the nearer band edge where the scan puts the
+    /// zero, and the allowance it lay within (m/s^2).
+    pub at_zero: Vec<[f64; 2]>,
     /// Every disagreement, described.
     pub disagreements: Vec<String>,
 }
@@ -268,6 +275,7 @@ impl Scan {
         self.near += other.near;
         self.state = self.state.max(other.state);
         self.offset = self.offset.max(other.offset);
+        self.at_zero.extend(other.at_zero);
         self.disagreements.extend(other.disagreements);
     }
 }
@@ -498,26 +506,6 @@ fn read_end(model: &Model, seg: &Segment, [x, v]: [f64; 2], out: &mut Scan) -> R
     if f0.abs() > t.tol_v + reach {
         return Reading::Nothing;
     }
-    // On an edge, a zero of v_rel and a crossing of the edge coincide to
-    // rounding: a slip on, or a stick that ends at once, are both right
-    // (the scans of the segments that follow check what comes next).
-    let (Some(then), false) = band(model, a_st, da_st, t.loc_a) else {
-        return Reading::Ambiguous;
-    };
-    let transition = |touch: bool| match (touch, then) {
-        (true, _) => Some(EventKind::Grazing { then }),
-        (false, Mode::Stick) => Some(EventKind::SlipToStick),
-        (false, Mode::Slip(to)) if to != dir => Some(EventKind::Reversal { to }),
-        (false, _) => None,
-    };
-    if at_period_end {
-        // At a period end the slider rests on the rod if |v_rel| <= tol_v,
-        // and the band decides, without a grazing (docs/model.md section 1).
-        if f0.abs() > t.tol_v - reach {
-            return Reading::Ambiguous;
-        }
-        return transition(false).map_or(Reading::Nothing, Reading::Event);
-    }
     // The coming minimum of sign v_rel, from the local parabola.
     let depth = if f1 < 0.0 {
         if f2 > 0.0 {
@@ -528,13 +516,57 @@ fn read_end(model: &Model, seg: &Segment, [x, v]: [f64; 2], out: &mut Scan) -> R
     } else {
         f0
     };
-    let touch = if depth < -(t.tol_v + t.err_v) {
+    let touch = if at_period_end {
+        // At a period end the slider rests on the rod if |v_rel| <= tol_v,
+        // and the band decides, without a grazing (docs/model.md section 1).
+        if f0.abs() > t.tol_v - reach {
+            return Reading::Ambiguous;
+        }
+        false
+    } else if depth < -(t.tol_v + t.err_v) {
         false
     } else if depth > -(t.tol_v - t.err_v) && f0.abs() <= t.tol_v - t.err_v {
         true
     } else {
         return Reading::Ambiguous;
     };
+    // The band at the zero. At a crossing inside the period, a_st is read
+    // where the scan puts the zero, `f0 / f1` before the end, and the zero
+    // is known to `e / |v_rel'|` with `e = loc_v + err_v` (where the engine
+    // may put it and the scan's own error): a_st moves by `|a_st'|` times
+    // that. Near a tangency (`e / |v_rel'| > sqrt(2 e / |v_rel''|)`) the
+    // line says nothing and the band is read at the end.
+    let e = t.loc_v + t.err_v;
+    let near_tangency = e / f1.abs() > (2.0 * e / f2.abs()).sqrt();
+    let (a_zero, zero_reach) = if touch || at_period_end || near_tangency {
+        (a_st, t.loc_a)
+    } else {
+        (
+            a_st - da_st * f0 / f1,
+            t.loc_a + t.err_a + da_st.abs() * e / f1.abs(),
+        )
+    };
+    // On an edge, a zero of v_rel and a crossing of the edge coincide to
+    // rounding: a slip on, or a stick that ends at once, are both right
+    // (the scans of the segments that follow check what comes next).
+    let (Some(then), false) = band(model, a_zero, da_st, zero_reach) else {
+        if !touch && !at_period_end {
+            let edge = (a_zero - model.a_plus)
+                .abs()
+                .min((a_zero - model.a_minus).abs());
+            out.at_zero.push([edge, zero_reach]);
+        }
+        return Reading::Ambiguous;
+    };
+    let transition = |touch: bool| match (touch, then) {
+        (true, _) => Some(EventKind::Grazing { then }),
+        (false, Mode::Stick) => Some(EventKind::SlipToStick),
+        (false, Mode::Slip(to)) if to != dir => Some(EventKind::Reversal { to }),
+        (false, _) => None,
+    };
+    if at_period_end {
+        return transition(false).map_or(Reading::Nothing, Reading::Event);
+    }
     if !touch {
         out.offset = out.offset.max(f0.abs() / (t.loc_v + f1.abs() * t.dt));
     }
@@ -597,7 +629,11 @@ fn scan_slip(model: &Model, sol: &Solution, seg: &Segment, dir: Direction, out: 
             let c = bisect(|s| f(s).1, prev_s, s, model.period, &mut count);
             let m = f(c).0;
             if c > edge && c < span - edge && m >= -(t.tol_v + t.loc_v) {
-                if m <= t.tol_v - t.err_v {
+                if m <= t.tol_v - t.err_v && exit_could_be_at(model, sol, seg, dir, c) {
+                    // The slip's start: its exit from a stick phase lies here
+                    // within its allowance.
+                    out.near += 1;
+                } else if m <= t.tol_v - t.err_v {
                     out.missed += 1;
                     out.disagreements.push(format!(
                         "v_rel = {m:e} at a critical point {c:e} s into {seg:?}"
@@ -612,6 +648,25 @@ fn scan_slip(model: &Model, sol: &Solution, seg: &Segment, dir: Direction, out: 
         prev_s = s;
     }
     out.samples += SAMPLES + 1 + count;
+}
+
+/// Whether the slip `seg` (direction `dir`) starts from rest on the rod
+/// (`|v_rel| <= tol_v`) and the stuck system's `a_st` at `c` seconds into
+/// it lies within the exit allowance `loc_a + |a_st'| dt` of the edge the
+/// slip leaves: a stick exit placed at `c` would be right, so a critical
+/// point of `v_rel` there is the slip's own start, not a touch.
+fn exit_could_be_at(model: &Model, sol: &Solution, seg: &Segment, dir: Direction, c: f64) -> bool {
+    let t = model.tol;
+    let v_rel_0 = seg.rod_start.v - seg.slider_start.v;
+    let [x, v, _, _] = sol.at(c);
+    let stick = model.ode(Mode::Stick);
+    let tau = seg.start + c;
+    let (a, da) = (stick.acceleration(tau, x, v), stick.jerk(tau, x, v));
+    let edge = match dir {
+        Direction::Forward => model.a_plus,
+        Direction::Backward => model.a_minus,
+    };
+    v_rel_0.abs() <= t.tol_v && (a - edge).abs() <= t.loc_a + da.abs() * t.dt
 }
 
 /// `a_st` stays in the band inside the segment, its extrema included.

@@ -167,36 +167,52 @@ impl<'s> DrivenEngine<'s> {
 
     /// The band the stuck system's acceleration lies in at phase `tau` for
     /// the rod state `(x, v)`, and where it goes on right after `tau` when
-    /// it sits on an edge within rounding.
-    fn band_after(&self, tau: f64, x: f64, v: f64) -> Band {
+    /// it sits on an edge within its uncertainty.
+    ///
+    /// The distances from the edges are the values the stick search starts
+    /// from ([`ModeFunctions::edge_functions`]), so the two never differ on
+    /// which side of an edge a stick phase starts. On an edge the direction
+    /// decides (the first derivative that is clearly nonzero); off it the
+    /// value does. At a transversal zero of `v_rel` whose time is known to
+    /// `time_error`, a value is on an edge within its rounding bound at
+    /// `tau` plus `|a_st'| time_error`: beyond that it lies on its side at
+    /// the zero, however close (a stick phase that starts inside the band
+    /// moving outwards ends where `a_st` reaches the edge:
+    /// [`ModeFunctions::stick_exit`]). Elsewhere (`None`: a period start, or
+    /// a grazing, whose time is an extremum of `v_rel`, where `a_st` crosses
+    /// the edge itself when `a_d = a_0`) it is on an edge within the stick
+    /// search's own tolerance ([`segment::band_tolerance`]).
+    fn band_after(&self, tau: f64, x: f64, v: f64, time_error: Option<f64>) -> Band {
         let stick = self.functions(Mode::Stick);
-        let (plus, minus) = (self.contact.a_plus, self.contact.a_minus);
-        let f = stick.band_function(tau, x, v, 0.0);
-        let [a, da, dda] = f.eval(0.0);
-        let [_, eta1, _] = f.eval_error_bound(0.0);
-        // On an edge within the stick search's own tolerance, the direction
-        // decides (segment::band_tolerance).
-        let span = self.period - tau;
-        let eta = segment::band_tolerance(
-            &stick.band_function(tau, x, v, plus),
-            &stick.band_function(tau, x, v, minus),
-            span,
-        );
-        // Which way a value at an edge moves: the first derivative that is
-        // clearly nonzero.
-        let rising = || da > eta1 || (da.abs() <= eta1 && dda > 0.0);
-        let falling = || da < -eta1 || (da.abs() <= eta1 && dda < 0.0);
-        if (a - plus).abs() <= eta {
-            if rising() { Band::Above } else { Band::Inside }
-        } else if (a - minus).abs() <= eta {
-            if falling() { Band::Below } else { Band::Inside }
+        let [upper, lower] =
+            stick.edge_functions(tau, x, v, [self.contact.a_minus, self.contact.a_plus]);
+        let [du, da, dda] = upper.eval(0.0);
+        let dl = lower.eval(0.0)[0];
+        let eta1 = upper.eval_error_bound(0.0)[1];
+        let [on_upper, on_lower] = match time_error {
+            Some(dt) => [&upper, &lower].map(|f| f.eval_error_bound(0.0)[0] + da.abs() * dt),
+            None => [segment::band_tolerance(&upper, &lower, self.period - tau); 2],
+        };
+        let rising = da > eta1 || (da.abs() <= eta1 && dda > 0.0);
+        let falling = da < -eta1 || (da.abs() <= eta1 && dda < 0.0);
+        if du.abs() <= on_upper {
+            if rising { Band::Above } else { Band::Inside }
+        } else if dl.abs() <= on_lower {
+            if falling { Band::Below } else { Band::Inside }
+        } else if du > 0.0 {
+            Band::Above
+        } else if dl < 0.0 {
+            Band::Below
         } else {
-            self.contact.band(a)
+            Band::Inside
         }
     }
 
-    fn mode_for(&self, v_rel: f64, tau: f64, x: f64, v: f64) -> Mode {
-        self.contact.mode(v_rel, || self.band_after(tau, x, v))
+    /// The mode of a slider with relative velocity `v_rel` at `tau` with
+    /// the rod at `(x, v)`; `time_error`: see [`Self::band_after`].
+    fn mode_for(&self, v_rel: f64, tau: f64, x: f64, v: f64, time_error: Option<f64>) -> Mode {
+        self.contact
+            .mode(v_rel, || self.band_after(tau, x, v, time_error))
     }
 
     fn run_period_impl<O: Observer>(
@@ -236,7 +252,7 @@ impl<'s> DrivenEngine<'s> {
         } else {
             walk.rod.v - walk.v
         };
-        walk.mode = self.mode_for(v_rel, 0.0, walk.rod.x, walk.rod.v);
+        walk.mode = self.mode_for(v_rel, 0.0, walk.rod.x, walk.rod.v, None);
         walk.departure = self.contact.at_rest(v_rel);
         if walk.mode == Mode::Stick {
             walk.v = walk.rod.v;
@@ -400,7 +416,8 @@ impl<'s> DrivenEngine<'s> {
         observer: &mut O,
     ) -> Result<(), SimulationError> {
         let old = walk.mode;
-        let mode = self.mode_for(0.0, walk.tau, walk.rod.x, walk.rod.v);
+        let at_zero = (!grazing).then_some(time_error);
+        let mode = self.mode_for(0.0, walk.tau, walk.rod.x, walk.rod.v, at_zero);
         walk.mode = mode;
         let a_st = self
             .rod

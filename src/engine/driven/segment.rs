@@ -31,11 +31,9 @@ fn progress(from: f64, s: f64, time: f64) -> f64 {
 }
 
 /// The tolerance within which the stuck system's acceleration counts as
-/// on a band edge, for `upper = a_st - a_0^+` and `lower = a_st - a_0^-`
-/// over `span`: four times their rounding bound (the root finder's own
-/// floor). The engine decides the band at a zero of `v_rel` with the same
-/// tolerance, so that a stick phase never starts within it moving
-/// outwards.
+/// on a band edge in the stick search, for `upper = a_st - a_0^+` and
+/// `lower = a_st - a_0^-` over `span`: four times their rounding bound (the
+/// root finder's own floor).
 pub(super) fn band_tolerance(upper: &ExpTrig, lower: &ExpTrig, span: f64) -> f64 {
     4.0 * upper.eval_error_bound(span)[0].max(lower.eval_error_bound(span)[0])
 }
@@ -148,6 +146,23 @@ impl ModeFunctions {
         }
     }
 
+    /// `[a_st - a_0^+, a_st - a_0^-]` for the rod state `(x, v)` at `tau`
+    /// and the band `[lo, hi]` (this being the stick mode's functions): the
+    /// functions the stick search follows, whose values at `s = 0` also
+    /// decide the band where a stick phase may start.
+    pub(super) fn edge_functions(
+        &self,
+        tau: f64,
+        x: f64,
+        v: f64,
+        [lo, hi]: [f64; 2],
+    ) -> [ExpTrig; 2] {
+        [
+            self.band_function(tau, x, v, hi),
+            self.band_function(tau, x, v, lo),
+        ]
+    }
+
     /// The zeros of the rod's acceleration in `(0, span)` after `tau`
     /// (this being the stick mode's functions): where a stuck slider's
     /// velocity has its extrema.
@@ -193,20 +208,37 @@ impl ModeFunctions {
         [lo, hi]: [f64; 2],
         counters: &mut WorkCounters,
     ) -> StickExit {
-        let upper = self.band_function(tau, rod.x, rod.v, hi);
-        let lower = self.band_function(tau, rod.x, rod.v, lo);
+        let [upper, lower] = self.edge_functions(tau, rod.x, rod.v, [lo, hi]);
         let tol = band_tolerance(&upper, &lower, span);
-        // A stick phase that starts on an edge (within `tol`, where the
-        // engine decided it moves inwards: [`band_tolerance`]) starts at
-        // that decision; elsewhere nothing at the start is an event.
-        let on_edge = |f: &ExpTrig| f.eval(0.0)[0].abs() <= tol;
-        let mut starts = [on_edge(&upper), on_edge(&lower)].map(|edge| {
-            if edge {
-                Start::AfterEvent
-            } else {
-                Start::Clear
+        // A stick phase that starts on an edge (within `tol`) moving inwards
+        // or along it starts at that decision: the search goes on from it.
+        // One that starts there moving outwards was decided inside the band
+        // beyond the value's rounding (the engine's band decision): it ends
+        // where `a_st` reaches the edge, too close for the search to
+        // resolve, so by the Taylor polynomial of `a_st` at the start; if
+        // that turns back before the edge, the start is a touch.
+        let mut starts = [Start::Clear; 2];
+        for (k, (f, to)) in [(&upper, Direction::Forward), (&lower, Direction::Backward)]
+            .into_iter()
+            .enumerate()
+        {
+            let [value, slope, curvature] = f.eval(0.0);
+            if value.abs() > tol {
+                continue;
             }
-        });
+            starts[k] = Start::AfterEvent;
+            let eta1 = f.eval_error_bound(0.0)[1];
+            // Depth inside the band, outward slope and curvature.
+            let sign = to.sign();
+            let (depth, p, q) = ((-sign * value).max(0.0), sign * slope, sign * curvature);
+            let outward = p > eta1 || (p.abs() <= eta1 && q > 0.0);
+            let disc = p * p + 2.0 * q * depth;
+            if outward && disc >= 0.0 {
+                // The smaller positive root of -depth + p s + q s^2 / 2.
+                let s = 2.0 * depth / (p + disc.sqrt());
+                return StickExit::Leaves { s: s.min(span), to };
+            }
+        }
         let mut from = 0.0;
         loop {
             counters.root_iterations += 1;
