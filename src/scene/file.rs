@@ -2,7 +2,7 @@
 //! checked) and its conversion to and from a validated [`Scene`].
 
 use super::{EngineKind, Outputs, RunSettings, Scene};
-use crate::actuator::{DrivenSpec, RealActuator, RodModel};
+use crate::actuator::{DrivenSpec, GivenVoltage, RealActuator, RodModel};
 use crate::error::{Num, ParamError};
 use crate::indicator::Indicator;
 use crate::motor::MotorParams;
@@ -24,6 +24,10 @@ pub struct SceneFile {
     /// `[actuator]`; `None`: no power outputs, a prescribed rod.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub actuator: Option<ActuatorTable>,
+    /// `[voltage]`; `None`: a driven rod's voltage is designed from the
+    /// signal.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub voltage: Option<VoltageTable>,
     /// `[run]`; `None`: default run settings.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub run: Option<RunTable>,
@@ -89,6 +93,22 @@ pub enum RodKind {
     Driven,
 }
 
+/// The `[voltage]` table: the voltage driving the rod, given directly,
+/// `u = offset + sum_k amplitudes_k sin(k 2 pi frequency t + phases_k)`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VoltageTable {
+    /// `f`, Hz.
+    pub frequency: f64,
+    /// `u_k`, V.
+    pub amplitudes: Vec<f64>,
+    /// `phi_k`, rad.
+    pub phases: Vec<f64>,
+    /// `u_0`, V (default 0).
+    #[serde(default)]
+    pub offset: f64,
+}
+
 /// The `[actuator.real]` table: the actuator driven, where it differs
 /// from the one the voltage was designed for.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -108,12 +128,21 @@ pub struct RealTable {
     pub transfer_factor: Option<f64>,
 }
 
-/// The actuator's parameters and the rod model of an `[actuator]` table.
+/// The actuator's parameters and the rod model of an `[actuator]` table;
+/// `voltage`: the scene gives `[voltage]`, which makes the rod driven
+/// unless `rod` says otherwise (refused by `Scene::validate`, as is a
+/// `[voltage]` without `[actuator]`).
 fn actuator_of(
     table: Option<ActuatorTable>,
+    voltage: bool,
 ) -> Result<(Option<ActuatorParams>, RodModel), ParamError> {
     let Some(t) = table else {
         return Ok((None, RodModel::Prescribed));
+    };
+    let default_rod = if voltage {
+        RodKind::Driven
+    } else {
+        RodKind::Prescribed
     };
     let params = ActuatorParams {
         mass: t.mass,
@@ -122,7 +151,7 @@ fn actuator_of(
         transfer_factor: t.transfer_factor,
         capacitance: t.capacitance,
     };
-    let rod = match t.rod.unwrap_or(RodKind::Prescribed) {
+    let rod = match t.rod.unwrap_or(default_rod) {
         RodKind::Driven => RodModel::Driven(DrivenSpec {
             reaction: t.reaction.unwrap_or(true),
             real: t.real.map_or_else(RealActuator::default, |r| RealActuator {
@@ -299,18 +328,35 @@ impl TryFrom<SceneFile> for Scene {
                 mu_dynamic: m.mu_dynamic,
                 extra_acceleration: m.extra_acceleration,
             });
-        let signal = match file.signal {
-            Some(table) => signal_spec(table)?,
-            None => SignalSpec::paper_default(),
+        let voltage = file.voltage.map(|t| GivenVoltage {
+            frequency: t.frequency,
+            amplitudes: t.amplitudes,
+            phases: t.phases,
+            offset: t.offset,
+        });
+        let (actuator, rod) = actuator_of(file.actuator, voltage.is_some())?;
+        let signal = match (file.signal, &voltage, &actuator) {
+            (Some(_), Some(_), _) => {
+                return Err(ParamError::Inconsistent {
+                    field: "voltage".to_owned(),
+                    reason: "given together with [signal]: the rod's motion follows from the \
+                             voltage; give one of the two"
+                        .to_owned(),
+                });
+            }
+            (Some(table), None, _) => signal_spec(table)?,
+            // Checked with the scene (Scene::validate).
+            (None, Some(v), Some(a)) => v.response(a),
+            _ => SignalSpec::paper_default(),
         };
         let run = run_settings(file.run)?;
-        let (actuator, rod) = actuator_of(file.actuator)?;
         let outputs = outputs(file.outputs, &signal, actuator.as_ref())?;
         let scene = Scene {
             motor,
             signal,
             actuator,
             rod,
+            voltage,
             run,
             outputs,
         };
@@ -323,27 +369,30 @@ impl From<&Scene> for SceneFile {
     fn from(scene: &Scene) -> Self {
         let m = &scene.motor;
         let signal = match &scene.signal {
-            SignalSpec::Ideal(shape) => SignalTable {
+            // A voltage's response is written as the voltage.
+            _ if scene.voltage.is_some() => None,
+            SignalSpec::Response { .. } => None,
+            SignalSpec::Ideal(shape) => Some(SignalTable {
                 duty: Some(shape.duty),
                 ..shape_table(SignalKind::Ideal, shape)
-            },
+            }),
             SignalSpec::Fourier {
                 shape,
                 harmonics,
                 sigma,
-            } => SignalTable {
+            } => Some(SignalTable {
                 harmonics: Some(i64::try_from(*harmonics).unwrap_or(i64::MAX)),
                 sigma: Some(*sigma),
                 duty: Some(shape.duty),
                 ..shape_table(SignalKind::Fourier, shape)
-            },
+            }),
             SignalSpec::Harmonics {
                 frequency,
                 amplitudes,
                 phases,
                 scale_to_stroke,
                 shift_to_minimum,
-            } => SignalTable {
+            } => Some(SignalTable {
                 frequency: Some(*frequency),
                 amplitudes: Some(amplitudes.clone()),
                 phases: Some(phases.clone()),
@@ -351,7 +400,7 @@ impl From<&Scene> for SceneFile {
                 stroke: *scale_to_stroke,
                 shift_to_minimum: Some(*shift_to_minimum),
                 ..empty_signal_table(SignalKind::Harmonics)
-            },
+            }),
         };
         SceneFile {
             motor: Some(MotorTable {
@@ -361,8 +410,14 @@ impl From<&Scene> for SceneFile {
                 mu_dynamic: m.mu_dynamic,
                 extra_acceleration: m.extra_acceleration,
             }),
-            signal: Some(signal),
+            signal,
             actuator: actuator_table(scene.actuator, &scene.rod),
+            voltage: scene.voltage.as_ref().map(|v| VoltageTable {
+                frequency: v.frequency,
+                amplitudes: v.amplitudes.clone(),
+                phases: v.phases.clone(),
+                offset: v.offset,
+            }),
             run: Some(RunTable {
                 engine: Some(scene.run.engine),
                 steps_per_harmonic: Some(i64::from(scene.run.steps_per_harmonic)),

@@ -244,6 +244,16 @@ impl Scene {
                     }
                 }
             }
+            SignalSpec::Response { frequency, .. } => {
+                if *frequency > PLAUSIBLE_MAX_FREQUENCY {
+                    warn(
+                        "voltage.frequency",
+                        *frequency,
+                        "Hz",
+                        "is above 10 MHz; frequencies are in Hz (1.6 kHz = 1600)".to_owned(),
+                    );
+                }
+            }
         }
         out
     }

@@ -80,6 +80,21 @@ pub enum SignalSpec {
         /// Shift so that the minimum lies at `t = 0` with value 0.
         shift_to_minimum: bool,
     },
+    /// The steady response of a driven rod's friction-free actuator to a
+    /// voltage given in the scene's `[voltage]` table (docs/model.md
+    /// section 16), as the scene computes it:
+    /// `x_R = offset + sum_k (cosines_k cos(k w_0 t) + sines_k sin(k w_0 t))`,
+    /// not shifted, not scaled.
+    Response {
+        /// Fundamental frequency `f_0` in Hz, the voltage's.
+        frequency: f64,
+        /// The constant term `x_0` (m).
+        offset: f64,
+        /// `A_k` for `k = 1..`, multiplying `cos(k w_0 t)` (m).
+        cosines: Vec<f64>,
+        /// `B_k` for `k = 1..`, multiplying `sin(k w_0 t)` (m).
+        sines: Vec<f64>,
+    },
 }
 
 /// Largest number of harmonics accepted: the certified root finder
@@ -175,6 +190,53 @@ impl SignalSpec {
                 }
                 if let Some(stroke) = scale_to_stroke {
                     ParamError::positive("signal.stroke", *stroke)?;
+                }
+                Ok(())
+            }
+            SignalSpec::Response {
+                frequency,
+                offset,
+                cosines,
+                sines,
+            } => {
+                // Built from a validated [voltage]; what fails here is the
+                // response itself (an overflow), named by its table.
+                ParamError::positive("voltage.frequency", *frequency)?;
+                if cosines.is_empty() || cosines.len() > MAX_HARMONICS {
+                    return Err(ParamError::out_of_range(
+                        "voltage.amplitudes",
+                        cosines.len() as f64,
+                        format!("must list from 1 to {MAX_HARMONICS} amplitudes"),
+                    ));
+                }
+                if sines.len() != cosines.len() {
+                    return Err(ParamError::Inconsistent {
+                        field: "voltage.phases".to_owned(),
+                        reason: format!(
+                            "the response has {} sines for {} cosines",
+                            sines.len(),
+                            cosines.len()
+                        ),
+                    });
+                }
+                let finite = std::iter::once(offset)
+                    .chain(cosines)
+                    .chain(sines)
+                    .all(|x| x.is_finite());
+                if !finite {
+                    return Err(ParamError::Inconsistent {
+                        field: "voltage".to_owned(),
+                        reason: "the actuator's response to the voltage is beyond floating \
+                                 point (alpha u / c overflows)"
+                            .to_owned(),
+                    });
+                }
+                if cosines.iter().chain(sines).all(|x| *x == 0.0) {
+                    return Err(ParamError::Inconsistent {
+                        field: "voltage.amplitudes".to_owned(),
+                        reason: "the actuator's response has no harmonic: the rod does not move"
+                            .to_owned(),
+                    });
                 }
                 Ok(())
             }
@@ -368,6 +430,17 @@ impl Signal {
                 *scale_to_stroke,
                 *shift_to_minimum,
             )?),
+            SignalSpec::Response {
+                frequency,
+                offset,
+                cosines,
+                sines,
+            } => Signal::Fourier(FourierSignal::from_coefficients(
+                1.0 / frequency,
+                *offset,
+                cosines.clone(),
+                sines.clone(),
+            )),
         };
         let signal = match signal {
             Signal::Fourier(s) => Signal::Fourier(s.with_fast_evaluation()),

@@ -143,6 +143,13 @@ impl SweepAxis {
         let kind = match signal {
             SignalSpec::Fourier { .. } => return None,
             SignalSpec::Ideal(_) => "ideal",
+            SignalSpec::Response { .. } => {
+                return Some(
+                    "the base scene gives the voltage ([voltage]), not the rod signal: \
+                     the rod follows from it"
+                        .to_owned(),
+                );
+            }
             SignalSpec::Harmonics {
                 scale_to_stroke, ..
             } => {
