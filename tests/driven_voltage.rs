@@ -94,10 +94,9 @@ fn a_voltage_table_drives_the_rod_and_writes_back_as_given() {
 
 #[test]
 fn each_refusal_is_one_line_naming_its_field() {
-    let good = format!(
-        "[voltage]\nfrequency = 9450.0\namplitudes = [120.0, 30.0]\nphases = [0.0, 1.2]\n\
-         offset = 0.0\n"
-    );
+    let good = "[voltage]\nfrequency = 9450.0\namplitudes = [120.0, 30.0]\nphases = [0.0, 1.2]\n\
+                offset = 0.0\n"
+        .to_owned();
     let with = |from: &str, to: &str| good.replace(from, to) + ACTUATOR;
     let signal = "[signal]\nkind = \"fourier\"\nstroke = 25e-6\nsqrt_kappa = 6.0\nharmonics = 2\n";
     let cases = [

@@ -111,40 +111,6 @@ impl GivenVoltage {
 mod tests {
     use super::*;
 
-    /// A single harmonic's response has the closed-form amplitude
-    /// `alpha u / |c - M w^2 + i d w|`, the phase lag
-    /// `atan2(d w, c - M w^2)` and the offset `alpha u_0 / c`.
-    #[test]
-    fn response_to_one_harmonic_is_the_closed_form() {
-        let a = ActuatorParams::default();
-        let (f, u, phi, u0) = (6000.0, 80.0, 0.7, 15.0);
-        let given = GivenVoltage {
-            frequency: f,
-            amplitudes: vec![u],
-            phases: vec![phi],
-            offset: u0,
-        };
-        let SignalSpec::Response {
-            offset,
-            cosines,
-            sines,
-            ..
-        } = given.response(&a)
-        else {
-            panic!("a response");
-        };
-        let w = 2.0 * std::f64::consts::PI * f;
-        let (zr, zi) = (a.stiffness - a.mass * w * w, a.damping * w);
-        let amplitude = a.transfer_factor * u / zr.hypot(zi);
-        let phase = phi - zi.atan2(zr);
-        // x = amplitude sin(w t + phase) = A cos + B sin.
-        let (ea, eb) = (amplitude * phase.sin(), amplitude * phase.cos());
-        assert!((cosines[0] - ea).abs() <= 1e-14 * amplitude, "{cosines:?}");
-        assert!((sines[0] - eb).abs() <= 1e-14 * amplitude, "{sines:?}");
-        let x0 = a.transfer_factor * u0 / a.stiffness;
-        assert!((offset - x0).abs() <= 1e-15 * x0);
-    }
-
     /// Each rule names its field.
     #[test]
     fn validation_names_the_field() {
