@@ -110,6 +110,7 @@
 //! (`motor.slider_mass = -1: must be positive`). An unreadable file gives
 //! [`SceneError::Io`].
 
+mod actuator_table;
 mod file;
 mod overrides;
 mod toml_error;
