@@ -10,7 +10,8 @@
 //!   reaction it decays and the rod settles onto the response;
 //! * the voltage `stickslip signal --voltage` prints for the driven
 //!   example, given back as `[voltage]`, reproduces the designed run: the
-//!   same physics reached two ways.
+//!   same physics reached two ways;
+//! * a sweep over a `[voltage]` scene varies the motor only.
 
 mod common;
 
@@ -360,5 +361,38 @@ fn the_designed_voltage_given_directly_reproduces_the_designed_run() {
         ("current_rms", a.current_rms, b.current_rms),
     ] {
         close(what, x, y, x.abs());
+    }
+}
+
+/// A sweep over a `[voltage]` scene varies the motor, each case keeping
+/// the voltage and its response, and refuses the signal's axes, which
+/// have nothing to vary, naming the axis.
+#[test]
+fn a_sweep_over_a_voltage_scene_varies_the_motor_only() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes");
+    let base = "base = \"driven_voltage.toml\"\n[axes]\n";
+    let sweep = stickslip::sweep::Sweep::from_toml_str(
+        &format!("{base}slider_mass = [1.0e-3, 2.0e-3]\n"),
+        "<test>",
+        &dir,
+    )
+    .expect("a motor axis");
+    let cases = sweep.cases();
+    assert_eq!(cases.len(), 2);
+    for case in &cases {
+        assert_eq!(case.scene.voltage, sweep.base().voltage);
+        assert_eq!(case.scene.signal, sweep.base().signal);
+        case.scene.validate().expect("a valid case");
+    }
+    assert_eq!(cases[1].scene.motor.slider_mass, 2.0e-3);
+    for axis in ["stroke = [1e-5]", "frequency = [8000.0]", "kappa = [4.0]"] {
+        let e = stickslip::sweep::Sweep::from_toml_str(&format!("{base}{axis}\n"), "<test>", &dir)
+            .expect_err(axis)
+            .to_string();
+        let name = axis.split(' ').next().expect("a name");
+        assert!(
+            e.contains(&format!("axes.{name}")) && e.contains("[voltage]"),
+            "{e}"
+        );
     }
 }
