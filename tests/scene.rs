@@ -719,6 +719,7 @@ proptest! {
             signal,
             actuator,
             rod: stickslip::actuator::RodModel::Prescribed,
+            voltage: None,
             run: RunSettings {
                 engine: EngineKind::Event,
                 steps_per_harmonic: steps,

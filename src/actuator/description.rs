@@ -30,8 +30,16 @@
 //! `[actuator]` (`actuator`); the ideal signal (`signal.kind`: it jumps,
 //! so no voltage moves an actuator along it); a voltage beyond floating
 //! point (`actuator`).
+//!
+//! A voltage given in the scene's `[voltage]` table
+//! ([`VoltageDescription::given`]) is printed as given: its frequency,
+//! amplitudes, phases and offset, bit for bit, so that the `[voltage]`
+//! table the text ends with, or one written from the JSON, reproduces the
+//! run. The signal is then the `[actuator]`'s response to it; it starts at
+//! rest when its position and velocity at `t = 0` are below `1e-12` of
+//! their amplitude sums.
 
-use super::Voltage;
+use super::{GivenVoltage, Voltage};
 use crate::error::{Num, ParamError};
 use crate::power::ActuatorParams;
 use crate::signal::{Signal, SignalSpec};
@@ -68,9 +76,16 @@ pub struct VoltageDescription {
     pub rms: f64,
     /// The signal is shifted to its minimum: `x_R(0) = 0`, `v_R(0) = 0`.
     pub starts_at_rest: bool,
-    /// The `[actuator]` parameters the voltage is designed for.
+    /// The voltage is the scene's `[voltage]`, not designed.
+    pub given: bool,
+    /// The `[actuator]` parameters the voltage is designed for (given:
+    /// whose response is the signal).
     pub actuator: ActuatorParams,
 }
+
+/// Relative size of a response's position and velocity at `t = 0` below
+/// which it starts at rest (rounding of the response, far above it).
+const REST: f64 = 1e-12;
 
 impl VoltageDescription {
     /// The voltage for the signal a scene's `spec` builds (`signal`) and
@@ -101,6 +116,13 @@ impl VoltageDescription {
             }
         };
         let voltage = Voltage::designed(fourier, actuator);
+        let starts_at_rest = match spec {
+            SignalSpec::Fourier { .. } => true,
+            SignalSpec::Harmonics {
+                shift_to_minimum, ..
+            } => *shift_to_minimum,
+            SignalSpec::Ideal(_) | SignalSpec::Response { .. } => false,
+        };
         let harmonics: Vec<VoltageHarmonic> = voltage
             .amplitudes()
             .into_iter()
@@ -126,13 +148,6 @@ impl VoltageDescription {
                     .to_owned(),
             });
         }
-        let starts_at_rest = match spec {
-            SignalSpec::Fourier { .. } => true,
-            SignalSpec::Harmonics {
-                shift_to_minimum, ..
-            } => *shift_to_minimum,
-            SignalSpec::Ideal(_) => false,
-        };
         Ok(Self {
             period: voltage.period(),
             f0: 1.0 / voltage.period(),
@@ -141,8 +156,51 @@ impl VoltageDescription {
             peak,
             rms,
             starts_at_rest,
+            given: false,
             actuator: *actuator,
         })
+    }
+
+    /// The voltage given in a scene's `[voltage]` (validated), whose
+    /// response by `actuator` is `signal`, the scene's built signal.
+    pub fn given(voltage: &GivenVoltage, signal: &Signal, actuator: &ActuatorParams) -> Self {
+        let u = voltage.voltage();
+        let harmonics = voltage
+            .amplitudes
+            .iter()
+            .zip(&voltage.phases)
+            .enumerate()
+            .map(|(i, (&amplitude, &phase))| VoltageHarmonic {
+                k: i + 1,
+                amplitude,
+                phase,
+            })
+            .collect();
+        let starts_at_rest = match signal {
+            Signal::Fourier(f) => {
+                let at_zero = f.state(0.0);
+                let d = f.amplitudes();
+                let x = f.offset().abs() + d.iter().sum::<f64>();
+                let v: f64 = d
+                    .iter()
+                    .enumerate()
+                    .map(|(i, a)| (i + 1) as f64 * f.omega() * a)
+                    .sum();
+                at_zero.x.abs() <= REST * x && at_zero.v.abs() <= REST * v
+            }
+            Signal::Ideal(_) => false,
+        };
+        Self {
+            period: u.period(),
+            f0: voltage.frequency,
+            offset: voltage.offset,
+            harmonics,
+            peak: u.peak(),
+            rms: u.rms(),
+            starts_at_rest,
+            given: true,
+            actuator: *actuator,
+        }
     }
 
     /// Readable text.
@@ -150,7 +208,12 @@ impl VoltageDescription {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "voltage: moves the [actuator] rod along the signal (inverse of (23))"
+            "{}",
+            if self.given {
+                "voltage: given in [voltage]; the signal is the [actuator]'s response to it"
+            } else {
+                "voltage: moves the [actuator] rod along the signal (inverse of (23))"
+            }
         );
         let _ = writeln!(s, "  period T          {:e} s", self.period);
         let _ = writeln!(s, "  f0                {} Hz", self.f0);
@@ -192,13 +255,41 @@ impl VoltageDescription {
         let a = &self.actuator;
         let _ = writeln!(
             s,
-            "designed for [actuator]: M x_R'' + d x_R' + c x_R = alpha u"
+            "{} [actuator]: M x_R'' + d x_R' + c x_R = alpha u",
+            if self.given {
+                "the response of"
+            } else {
+                "designed for"
+            }
         );
         let _ = writeln!(s, "  M (mass)          {} kg", Num(a.mass));
         let _ = writeln!(s, "  d (damping)       {} N s/m", Num(a.damping));
         let _ = writeln!(s, "  c (stiffness)     {} N/m", Num(a.stiffness));
         let _ = writeln!(s, "  alpha             {} N/V", Num(a.transfer_factor));
+        let _ = writeln!(
+            s,
+            "as a scene table (in place of [signal], with this [actuator]):"
+        );
+        s.push_str(&self.to_toml());
         s
+    }
+
+    /// The voltage as a scene's `[voltage]` table, every number as printed
+    /// in JSON (shortest round trip).
+    pub fn to_toml(&self) -> String {
+        let list = |values: &mut dyn Iterator<Item = f64>| {
+            values
+                .map(|v| format!("{v:?}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        format!(
+            "[voltage]\nfrequency = {:?}\namplitudes = [{}]\nphases = [{}]\noffset = {:?}\n",
+            self.f0,
+            list(&mut self.harmonics.iter().map(|h| h.amplitude)),
+            list(&mut self.harmonics.iter().map(|h| h.phase)),
+            self.offset
+        )
     }
 
     /// The JSON object (keys in docs/interface.md).
@@ -212,6 +303,7 @@ impl VoltageDescription {
             "peak": self.peak,
             "rms": self.rms,
             "starts_at_rest": self.starts_at_rest,
+            "given": self.given,
             "actuator": {
                 "mass": a.mass,
                 "damping": a.damping,
@@ -239,11 +331,21 @@ impl VoltageDescription {
     /// The comment lines both snippets start with (`mark`: `%` or `#`).
     fn header(&self, mark: &str) -> String {
         let a = &self.actuator;
+        let what = if self.given {
+            format!(
+                "{mark} actuator voltage u(t) (V, t in s) given in [voltage]; the signal of\n\
+                 {mark} `stickslip signal` is its response by [actuator] M = {} kg,\n",
+                Num(a.mass)
+            )
+        } else {
+            format!(
+                "{mark} actuator voltage u(t) (V, t in s) that moves the rod along the signal\n\
+                 {mark} of `stickslip signal`, designed for [actuator] M = {} kg,\n",
+                Num(a.mass)
+            )
+        };
         format!(
-            "{mark} actuator voltage u(t) (V, t in s) that moves the rod along the signal\n\
-             {mark} of `stickslip signal`, designed for [actuator] M = {} kg,\n\
-             {mark} d = {} N s/m, c = {} N/m, alpha = {} N/V\n",
-            Num(a.mass),
+            "{what}{mark} d = {} N s/m, c = {} N/m, alpha = {} N/V\n",
             Num(a.damping),
             Num(a.stiffness),
             Num(a.transfer_factor)

@@ -14,6 +14,9 @@
 //!   `reaction`, `[actuator.real]`).
 //! * [`Voltage`] (`voltage.rs`): the voltage, designed as the inverse of
 //!   (23) for the scene's signal or given.
+//! * [`GivenVoltage`] (`given.rs`): a voltage given in the scene's
+//!   `[voltage]` table, and the friction-free actuator's response to it,
+//!   the rod's reference motion.
 //! * `response.rs`: the rod's closed-form motion in each mode.
 //! * [`VoltageDescription`] (`description.rs`): the designed voltage for a
 //!   signal generator, as `stickslip signal --voltage` prints it.
@@ -29,10 +32,12 @@
 //! replaced by `a_R^stick`.
 
 mod description;
+mod given;
 mod response;
 mod voltage;
 
 pub use description::{VoltageDescription, VoltageHarmonic};
+pub use given::GivenVoltage;
 pub(crate) use response::ModeResponse;
 pub use voltage::Voltage;
 

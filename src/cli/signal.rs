@@ -17,7 +17,8 @@ pub(crate) struct SignalArgs {
     /// Scene file (TOML); omitted: the built-in default scene.
     scene: Option<PathBuf>,
     /// Print the voltage u(t) that moves the rod of [actuator] exactly
-    /// along the signal (for a signal generator) instead of the signal.
+    /// along the signal (for a signal generator) instead of the signal;
+    /// a scene's [voltage] as given.
     #[arg(long)]
     voltage: bool,
     /// Print one JSON object.
@@ -60,8 +61,11 @@ pub(crate) fn signal(args: SignalArgs, streams: &mut Streams<'_>) -> Result<(), 
         _ => Form::Text,
     };
     let text = if args.voltage {
-        let d = VoltageDescription::new(&scene.signal, &signal, scene.actuator.as_ref())
-            .map_err(|e| e.to_string())?;
+        let d = match (&scene.voltage, &scene.actuator) {
+            (Some(given), Some(actuator)) => VoltageDescription::given(given, &signal, actuator),
+            _ => VoltageDescription::new(&scene.signal, &signal, scene.actuator.as_ref())
+                .map_err(|e| e.to_string())?,
+        };
         match form {
             Form::Text => d.to_text(),
             Form::Json => json_text(&d.to_json())?,

@@ -152,6 +152,7 @@ fn scene_harmonics(spec: &SignalSpec) -> usize {
     match spec {
         SignalSpec::Fourier { harmonics, .. } => *harmonics,
         SignalSpec::Harmonics { amplitudes, .. } => amplitudes.len(),
+        SignalSpec::Response { cosines, .. } => cosines.len(),
         SignalSpec::Ideal(_) => 2,
     }
 }

@@ -61,7 +61,7 @@ pub(crate) fn actuator_sensitivities_text(
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "sensitivities held fixed: the voltage (as designed for [actuator])"
+        "sensitivities held fixed: the voltage (designed for [actuator], or given in [voltage])"
     );
     match sensitivities {
         Ok(s) => {

@@ -1,8 +1,9 @@
 //! The scene file as written (every table and field optional, nothing
 //! checked) and its conversion to and from a validated [`Scene`].
 
+use super::actuator_table::{ActuatorTable, VoltageTable, actuator_of, actuator_table};
 use super::{EngineKind, Outputs, RunSettings, Scene};
-use crate::actuator::{DrivenSpec, RealActuator, RodModel};
+use crate::actuator::GivenVoltage;
 use crate::error::{Num, ParamError};
 use crate::indicator::Indicator;
 use crate::motor::MotorParams;
@@ -24,6 +25,10 @@ pub struct SceneFile {
     /// `[actuator]`; `None`: no power outputs, a prescribed rod.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub actuator: Option<ActuatorTable>,
+    /// `[voltage]`; `None`: a driven rod's voltage is designed from the
+    /// signal.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub voltage: Option<VoltageTable>,
     /// `[run]`; `None`: default run settings.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub run: Option<RunTable>,
@@ -51,133 +56,6 @@ pub struct MotorTable {
     /// `g_t`, m/s^2 (default 0).
     #[serde(default)]
     pub extra_acceleration: f64,
-}
-
-/// The `[actuator]` table: the five parameters of (23), (21), all
-/// required, and how the rod moves.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ActuatorTable {
-    /// `M`, kg.
-    pub mass: f64,
-    /// `d`, N s/m.
-    pub damping: f64,
-    /// `c`, N/m.
-    pub stiffness: f64,
-    /// `alpha`, N/V.
-    pub transfer_factor: f64,
-    /// `C`, F.
-    pub capacitance: f64,
-    /// `"prescribed"` (default) or `"driven"`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub rod: Option<RodKind>,
-    /// Driven rod: the friction acts back on it (default true).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub reaction: Option<bool>,
-    /// Driven rod: `[actuator.real]`, the actuator actually driven.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub real: Option<RealTable>,
-}
-
-/// The rod `kind` of `[actuator] rod`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum RodKind {
-    /// The rod follows the signal.
-    Prescribed,
-    /// The rod obeys the actuator's equation under the voltage.
-    Driven,
-}
-
-/// The `[actuator.real]` table: the actuator driven, where it differs
-/// from the one the voltage was designed for.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RealTable {
-    /// `M`, kg.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub mass: Option<f64>,
-    /// `d`, N s/m.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub damping: Option<f64>,
-    /// `c`, N/m.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub stiffness: Option<f64>,
-    /// `alpha`, N/V.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub transfer_factor: Option<f64>,
-}
-
-/// The actuator's parameters and the rod model of an `[actuator]` table.
-fn actuator_of(
-    table: Option<ActuatorTable>,
-) -> Result<(Option<ActuatorParams>, RodModel), ParamError> {
-    let Some(t) = table else {
-        return Ok((None, RodModel::Prescribed));
-    };
-    let params = ActuatorParams {
-        mass: t.mass,
-        damping: t.damping,
-        stiffness: t.stiffness,
-        transfer_factor: t.transfer_factor,
-        capacitance: t.capacitance,
-    };
-    let rod = match t.rod.unwrap_or(RodKind::Prescribed) {
-        RodKind::Driven => RodModel::Driven(DrivenSpec {
-            reaction: t.reaction.unwrap_or(true),
-            real: t.real.map_or_else(RealActuator::default, |r| RealActuator {
-                mass: r.mass,
-                damping: r.damping,
-                stiffness: r.stiffness,
-                transfer_factor: r.transfer_factor,
-            }),
-        }),
-        RodKind::Prescribed => {
-            let driven_only = if t.reaction.is_some() {
-                Some("actuator.reaction")
-            } else if t.real.is_some() {
-                Some("actuator.real")
-            } else {
-                None
-            };
-            if let Some(field) = driven_only {
-                return Err(ParamError::Inconsistent {
-                    field: field.to_owned(),
-                    reason: "applies only to a driven rod (actuator.rod = \"driven\")".to_owned(),
-                });
-            }
-            RodModel::Prescribed
-        }
-    };
-    Ok((Some(params), rod))
-}
-
-/// The `[actuator]` table of a scene's actuator and rod.
-fn actuator_table(params: Option<ActuatorParams>, rod: &RodModel) -> Option<ActuatorTable> {
-    let p = params?;
-    let (kind, reaction, real) = match rod {
-        RodModel::Prescribed => (None, None, None),
-        RodModel::Driven(spec) => (
-            Some(RodKind::Driven),
-            Some(spec.reaction),
-            (!spec.real.is_design()).then_some(RealTable {
-                mass: spec.real.mass,
-                damping: spec.real.damping,
-                stiffness: spec.real.stiffness,
-                transfer_factor: spec.real.transfer_factor,
-            }),
-        ),
-    };
-    Some(ActuatorTable {
-        mass: p.mass,
-        damping: p.damping,
-        stiffness: p.stiffness,
-        transfer_factor: p.transfer_factor,
-        capacitance: p.capacitance,
-        rod: kind,
-        reaction,
-        real,
-    })
 }
 
 /// The signal `kind` of a scene.
@@ -299,18 +177,35 @@ impl TryFrom<SceneFile> for Scene {
                 mu_dynamic: m.mu_dynamic,
                 extra_acceleration: m.extra_acceleration,
             });
-        let signal = match file.signal {
-            Some(table) => signal_spec(table)?,
-            None => SignalSpec::paper_default(),
+        let voltage = file.voltage.map(|t| GivenVoltage {
+            frequency: t.frequency,
+            amplitudes: t.amplitudes,
+            phases: t.phases,
+            offset: t.offset,
+        });
+        let (actuator, rod) = actuator_of(file.actuator, voltage.is_some())?;
+        let signal = match (file.signal, &voltage, &actuator) {
+            (Some(_), Some(_), _) => {
+                return Err(ParamError::Inconsistent {
+                    field: "voltage".to_owned(),
+                    reason: "given together with [signal]: the rod's motion follows from the \
+                             voltage; give one of the two"
+                        .to_owned(),
+                });
+            }
+            (Some(table), None, _) => signal_spec(table)?,
+            // Checked with the scene (Scene::validate).
+            (None, Some(v), Some(a)) => v.response(a),
+            _ => SignalSpec::paper_default(),
         };
         let run = run_settings(file.run)?;
-        let (actuator, rod) = actuator_of(file.actuator)?;
         let outputs = outputs(file.outputs, &signal, actuator.as_ref())?;
         let scene = Scene {
             motor,
             signal,
             actuator,
             rod,
+            voltage,
             run,
             outputs,
         };
@@ -323,27 +218,30 @@ impl From<&Scene> for SceneFile {
     fn from(scene: &Scene) -> Self {
         let m = &scene.motor;
         let signal = match &scene.signal {
-            SignalSpec::Ideal(shape) => SignalTable {
+            // A voltage's response is written as the voltage.
+            _ if scene.voltage.is_some() => None,
+            SignalSpec::Response { .. } => None,
+            SignalSpec::Ideal(shape) => Some(SignalTable {
                 duty: Some(shape.duty),
                 ..shape_table(SignalKind::Ideal, shape)
-            },
+            }),
             SignalSpec::Fourier {
                 shape,
                 harmonics,
                 sigma,
-            } => SignalTable {
+            } => Some(SignalTable {
                 harmonics: Some(i64::try_from(*harmonics).unwrap_or(i64::MAX)),
                 sigma: Some(*sigma),
                 duty: Some(shape.duty),
                 ..shape_table(SignalKind::Fourier, shape)
-            },
+            }),
             SignalSpec::Harmonics {
                 frequency,
                 amplitudes,
                 phases,
                 scale_to_stroke,
                 shift_to_minimum,
-            } => SignalTable {
+            } => Some(SignalTable {
                 frequency: Some(*frequency),
                 amplitudes: Some(amplitudes.clone()),
                 phases: Some(phases.clone()),
@@ -351,7 +249,7 @@ impl From<&Scene> for SceneFile {
                 stroke: *scale_to_stroke,
                 shift_to_minimum: Some(*shift_to_minimum),
                 ..empty_signal_table(SignalKind::Harmonics)
-            },
+            }),
         };
         SceneFile {
             motor: Some(MotorTable {
@@ -361,8 +259,14 @@ impl From<&Scene> for SceneFile {
                 mu_dynamic: m.mu_dynamic,
                 extra_acceleration: m.extra_acceleration,
             }),
-            signal: Some(signal),
+            signal,
             actuator: actuator_table(scene.actuator, &scene.rod),
+            voltage: scene.voltage.as_ref().map(|v| VoltageTable {
+                frequency: v.frequency,
+                amplitudes: v.amplitudes.clone(),
+                phases: v.phases.clone(),
+                offset: v.offset,
+            }),
             run: Some(RunTable {
                 engine: Some(scene.run.engine),
                 steps_per_harmonic: Some(i64::from(scene.run.steps_per_harmonic)),

@@ -110,6 +110,7 @@
 //! (`motor.slider_mass = -1: must be positive`). An unreadable file gives
 //! [`SceneError::Io`].
 
+mod actuator_table;
 mod file;
 mod overrides;
 mod toml_error;
@@ -120,7 +121,7 @@ pub use overrides::{Override, OverrideError};
 pub(crate) use toml_error::parse_message;
 pub use warnings::Warning;
 
-use crate::actuator::{DrivenSpec, RodModel};
+use crate::actuator::{DrivenSpec, GivenVoltage, RodModel};
 use crate::error::{Error, Num, ParamError, SceneError};
 use crate::indicator::Indicator;
 use crate::motor::{Motor, MotorParams};
@@ -263,6 +264,7 @@ pub(crate) fn fixed_steps_per_period(signal: &SignalSpec, steps_per_harmonic: u3
         SignalSpec::Ideal(_) => 1,
         SignalSpec::Fourier { harmonics, .. } => *harmonics,
         SignalSpec::Harmonics { amplitudes, .. } => amplitudes.len().max(1),
+        SignalSpec::Response { cosines, .. } => cosines.len().max(1),
     };
     harmonics as u64 * u64::from(steps_per_harmonic)
 }
@@ -318,6 +320,11 @@ pub struct Scene {
     /// How the rod moves (`[actuator] rod`): prescribed, or driven by the
     /// voltage through the actuator (docs/model.md section 16).
     pub rod: RodModel,
+    /// The voltage of a driven rod given directly (`[voltage]`); then
+    /// `signal` is the `[actuator]`'s response to it
+    /// ([`GivenVoltage::response`], set by [`Scene::set_voltage`]).
+    /// `None`: a driven rod's voltage is designed from `signal`.
+    pub voltage: Option<GivenVoltage>,
     /// How to run (`[run]`).
     pub run: RunSettings,
     /// What to report (`[outputs]`).
@@ -334,6 +341,7 @@ impl Default for Scene {
             signal: SignalSpec::paper_default(),
             actuator: Some(ActuatorParams::default()),
             rod: RodModel::Prescribed,
+            voltage: None,
             run: RunSettings::default(),
             outputs: Outputs {
                 indicators: Indicator::ALL.to_vec(),
@@ -454,13 +462,44 @@ impl Scene {
             .expect("a SceneFile has only tables, numbers, strings, booleans and arrays")
     }
 
+    /// Drives the rod by `voltage` given directly (`[voltage]`): the
+    /// signal becomes the `[actuator]`'s response to it and a prescribed
+    /// rod a driven one (with the reaction). Needs the actuator (the error
+    /// names `voltage`); the values are checked by [`Scene::validate`].
+    pub fn set_voltage(&mut self, voltage: GivenVoltage) -> Result<(), ParamError> {
+        let Some(actuator) = &self.actuator else {
+            return Err(ParamError::Inconsistent {
+                field: "voltage".to_owned(),
+                reason: "drives an actuator: the scene needs [actuator]".to_owned(),
+            });
+        };
+        self.signal = voltage.response(actuator);
+        if self.rod == RodModel::Prescribed {
+            self.rod = RodModel::Driven(DrivenSpec::default());
+        }
+        self.voltage = Some(voltage);
+        Ok(())
+    }
+
     /// Checks every rule a scene file is checked against; errors name the
     /// scene field.
     pub fn validate(&self) -> Result<(), ParamError> {
         Motor::new(self.motor)?;
-        self.signal.validate()?;
         if let Some(actuator) = &self.actuator {
             actuator.validate()?;
+        }
+        self.check_voltage()?;
+        self.signal.validate()?;
+        if let Some(voltage) = &self.voltage
+            && let Some(actuator) = &self.actuator
+            && self.signal != voltage.response(actuator)
+        {
+            return Err(ParamError::Inconsistent {
+                field: "signal".to_owned(),
+                reason: "differs from the [actuator]'s response to [voltage] \
+                         (set both with Scene::set_voltage)"
+                    .to_owned(),
+            });
         }
         if let RodModel::Driven(spec) = &self.rod {
             check_driven(&self.signal, self.actuator.as_ref(), spec)?;
@@ -510,9 +549,47 @@ impl Scene {
     }
 }
 
+impl Scene {
+    /// A `[voltage]` needs a driven rod and the `[actuator]` it drives; a
+    /// voltage's response as the signal needs its `[voltage]`.
+    fn check_voltage(&self) -> Result<(), ParamError> {
+        let Some(voltage) = &self.voltage else {
+            if matches!(self.signal, SignalSpec::Response { .. }) {
+                return Err(ParamError::Inconsistent {
+                    field: "signal".to_owned(),
+                    reason: "is a voltage's response without the [voltage] \
+                             (set both with Scene::set_voltage)"
+                        .to_owned(),
+                });
+            }
+            return Ok(());
+        };
+        voltage.validate()?;
+        if self.actuator.is_none() {
+            return Err(ParamError::Inconsistent {
+                field: "voltage".to_owned(),
+                reason: "drives an actuator: give the [actuator] table (mass, damping, \
+                         stiffness, transfer_factor, capacitance)"
+                    .to_owned(),
+            });
+        }
+        if self.rod == RodModel::Prescribed {
+            return Err(ParamError::Inconsistent {
+                field: "actuator.rod".to_owned(),
+                reason: "\"prescribed\" with a [voltage] table: a given voltage drives the rod \
+                         (actuator.rod = \"driven\", the default with [voltage])"
+                    .to_owned(),
+            });
+        }
+        Ok(())
+    }
+}
+
 /// A driven rod needs an actuator and a continuous signal that starts at
 /// rest (docs/model.md section 16): `fourier`, or `harmonics` shifted to
-/// its minimum.
+/// its minimum, both followed by the designed voltage from rest; or the
+/// response to a given `[voltage]`, which need not start at rest (the
+/// rod's free oscillation, excited at `t = 0`, decays).
 fn check_driven(
     signal: &SignalSpec,
     actuator: Option<&ActuatorParams>,
@@ -526,7 +603,7 @@ fn check_driven(
     };
     spec.real.apply(actuator)?;
     match signal {
-        SignalSpec::Fourier { .. } => Ok(()),
+        SignalSpec::Fourier { .. } | SignalSpec::Response { .. } => Ok(()),
         SignalSpec::Harmonics {
             shift_to_minimum: true,
             ..

@@ -5,7 +5,7 @@
 use super::Scene;
 use crate::error::Num;
 use crate::motor::Motor;
-use crate::signal::{Drive, SignalSpec};
+use crate::signal::{Drive, FourierSignal, SignalSpec};
 use std::fmt;
 
 /// Plausible strokes (and harmonic amplitudes) of a piezo inertia drive, m:
@@ -242,6 +242,46 @@ impl Scene {
                             }
                         }
                     }
+                }
+            }
+            SignalSpec::Response {
+                frequency,
+                offset,
+                cosines,
+                sines,
+            } => {
+                if *frequency > PLAUSIBLE_MAX_FREQUENCY {
+                    warn(
+                        "voltage.frequency",
+                        *frequency,
+                        "Hz",
+                        "is above 10 MHz; frequencies are in Hz (1.6 kHz = 1600)".to_owned(),
+                    );
+                }
+                let stroke = FourierSignal::from_coefficients(
+                    1.0 / frequency,
+                    *offset,
+                    cosines.clone(),
+                    sines.clone(),
+                )
+                .stroke();
+                let (lo, hi) = PLAUSIBLE_STROKE;
+                let largest = self.voltage.as_ref().map_or(f64::NAN, |v| {
+                    v.amplitudes.iter().copied().fold(0.0, f64::max)
+                });
+                if stroke.is_finite() && !(lo..=hi).contains(&stroke) {
+                    warn(
+                        "voltage.amplitudes",
+                        largest,
+                        "V",
+                        format!(
+                            "(the largest) move the [actuator]'s rod by a stroke of {} m, {} \
+                             1 {}; voltages are in V",
+                            Num(stroke),
+                            if stroke > hi { "above" } else { "below" },
+                            if stroke > hi { "mm" } else { "nm" }
+                        ),
+                    );
                 }
             }
         }

@@ -111,6 +111,8 @@ impl Parameter {
                 all.extend((0..amplitudes.len()).map(Parameter::Amplitude));
                 all.extend((0..amplitudes.len()).map(Parameter::Phase));
             }
+            // A driven rod's: the actuator's (RunReport::actuator_sensitivities).
+            SignalSpec::Response { .. } => {}
         }
         all
     }

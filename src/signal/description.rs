@@ -28,7 +28,8 @@ pub struct Harmonic {
 /// The rod signal as simulated.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SignalDescription {
-    /// `"fourier"`, `"harmonics"` or `"ideal"`.
+    /// `"fourier"`, `"harmonics"`, `"ideal"`, or `"response"` (the
+    /// actuator's response to a scene's `[voltage]`).
     pub kind: &'static str,
     /// Period `T` (s).
     pub period: f64,
@@ -108,7 +109,9 @@ impl SignalDescription {
                         *scale_to_stroke,
                         *shift_to_minimum,
                     ),
-                    SignalSpec::Ideal(_) => (None, Vec::new(), None, false),
+                    SignalSpec::Ideal(_) | SignalSpec::Response { .. } => {
+                        (None, Vec::new(), None, false)
+                    }
                 };
                 let stroke_scale = match (&raw, scale_to) {
                     (Some(r), Some(target)) => Some(target / r.stroke()),
@@ -137,10 +140,10 @@ impl SignalDescription {
                     })
                     .collect();
                 Self {
-                    kind: if matches!(spec, SignalSpec::Harmonics { .. }) {
-                        "harmonics"
-                    } else {
-                        "fourier"
+                    kind: match spec {
+                        SignalSpec::Harmonics { .. } => "harmonics",
+                        SignalSpec::Response { .. } => "response",
+                        _ => "fourier",
                     },
                     period,
                     f0: 1.0 / period,

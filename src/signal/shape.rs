@@ -222,28 +222,28 @@ impl IdealShape {
 impl SignalSpec {
     /// The ideal shape of a `kappa`-based kind (`ideal`, `fourier`), with
     /// an `f_max` drive resolved to `f_0 = f_max / n`; `None` for
-    /// `harmonics`.
+    /// `harmonics` and a voltage's response.
     pub fn shape(&self) -> Option<IdealShape> {
         match self {
             SignalSpec::Ideal(shape) => Some(*shape),
             SignalSpec::Fourier {
                 shape, harmonics, ..
             } => Some(shape.resolved(*harmonics)),
-            SignalSpec::Harmonics { .. } => None,
+            SignalSpec::Harmonics { .. } | SignalSpec::Response { .. } => None,
         }
     }
 
-    /// The drive as the scene gives it; `None` for `harmonics`, which
-    /// gives `frequency` directly.
+    /// The drive as the scene gives it; `None` for `harmonics` and a
+    /// voltage's response, which give `frequency` directly.
     pub fn drive(&self) -> Option<Drive> {
         match self {
             SignalSpec::Ideal(shape) | SignalSpec::Fourier { shape, .. } => Some(shape.drive),
-            SignalSpec::Harmonics { .. } => None,
+            SignalSpec::Harmonics { .. } | SignalSpec::Response { .. } => None,
         }
     }
 
     /// What the signal holds fixed when the motor changes: a `harmonics`
-    /// signal its frequency.
+    /// signal or a voltage's response its frequency.
     pub fn held(&self) -> Held {
         self.drive().map_or(Held::Frequency, Drive::held)
     }
@@ -253,7 +253,9 @@ impl SignalSpec {
     /// the built signal's `1 / T`.
     pub fn f0(&self, motor: &Motor) -> f64 {
         match self {
-            SignalSpec::Harmonics { frequency, .. } => *frequency,
+            SignalSpec::Harmonics { frequency, .. } | SignalSpec::Response { frequency, .. } => {
+                *frequency
+            }
             _ => self.shape().map_or(f64::NAN, |s| s.f0(motor)),
         }
     }

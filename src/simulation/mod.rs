@@ -230,8 +230,8 @@ pub(super) fn simulate_built(
 }
 
 /// The driven rod of a scene (`[actuator] rod = "driven"`): the voltage
-/// designed for the scene's actuator and signal, driving the real
-/// actuator.
+/// given in `[voltage]`, or designed for the scene's actuator and signal,
+/// driving the real actuator.
 pub(crate) fn driven_rod(
     scene: &Scene,
     spec: &DrivenSpec,
@@ -247,7 +247,10 @@ pub(crate) fn driven_rod(
         }
         .into());
     };
-    let voltage = Voltage::designed(series, design);
+    let voltage = match &scene.voltage {
+        Some(given) => given.voltage(),
+        None => Voltage::designed(series, design),
+    };
     Ok(DrivenRod::new(spec, design, voltage, motor)?)
 }
 

@@ -138,11 +138,28 @@ impl SweepAxis {
         self.check(self.name(), value).is_ok()
     }
 
-    /// Why this axis cannot vary the base signal, or `None` if it can.
+    /// Why this axis cannot vary the base signal, or `None` if it can (a
+    /// motor axis always can; a signal axis cannot vary a voltage's
+    /// response).
     pub(super) fn unfit_for(self, signal: &SignalSpec) -> Option<String> {
         let kind = match signal {
             SignalSpec::Fourier { .. } => return None,
             SignalSpec::Ideal(_) => "ideal",
+            SignalSpec::Response { .. } => {
+                let motor = matches!(
+                    self,
+                    SweepAxis::MuStatic
+                        | SweepAxis::MuDynamic
+                        | SweepAxis::ContactForce
+                        | SweepAxis::SliderMass
+                        | SweepAxis::ExtraAcceleration
+                );
+                return (!motor).then(|| {
+                    "the base scene gives the voltage ([voltage]), not the rod signal: \
+                     the rod's motion follows from it"
+                        .to_owned()
+                });
+            }
             SignalSpec::Harmonics {
                 scale_to_stroke, ..
             } => {
