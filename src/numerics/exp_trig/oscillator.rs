@@ -224,7 +224,15 @@ impl DampedOscillator {
     /// the sums of their terms' magnitudes `U_j`, `V_j`. So the error is at
     /// most `(8 + ν s_max) ε (U_j + G V_j)`, here doubled. The recurrence
     /// adds `2σ e_{j-1} + ω0² e_{j-2}` and the rounding of its own terms.
+    #[cfg(test)]
     pub(crate) fn rounding(&self, s_max: f64) -> [f64; 7] {
+        self.rounding_and_bounds(s_max).0
+    }
+
+    /// [`DampedOscillator::rounding`] and the bounds on `|y^(j)|`, `j < 7`,
+    /// for all `s >= 0` it is built on
+    /// ([`DampedOscillator::derivative_bounds`] from `y0`, `y1`).
+    pub(crate) fn rounding_and_bounds(&self, s_max: f64) -> ([f64; 7], [f64; 7]) {
         let (sg, w2) = (self.sigma, self.omega0 * self.omega0);
         let arg = match self.regime() {
             Regime::Under { nu } => nu * s_max.max(0.0),
@@ -257,7 +265,7 @@ impl DampedOscillator {
                     + 4.0 * EPS * (2.0 * sg * bound[j - 1] + w2 * bound[j - 2])
             };
         }
-        e
+        (e, bound)
     }
 }
 
