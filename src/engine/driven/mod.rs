@@ -171,17 +171,13 @@ impl<'s> DrivenEngine<'s> {
     fn band_after(&self, tau: f64, x: f64, v: f64) -> Band {
         let stick = self.functions(Mode::Stick);
         let (plus, minus) = (self.contact.a_plus, self.contact.a_minus);
-        let f = stick.band_function(tau, x, v, 0.0);
+        let [f, upper, lower] = stick.band_functions(tau, x, v, [0.0, plus, minus]);
         let [a, da, dda] = f.eval(0.0);
         let [_, eta1, _] = f.eval_error_bound(0.0);
         // On an edge within the stick search's own tolerance, the direction
         // decides (segment::band_tolerance).
         let span = self.period - tau;
-        let eta = segment::band_tolerance(
-            &stick.band_function(tau, x, v, plus),
-            &stick.band_function(tau, x, v, minus),
-            span,
-        );
+        let eta = segment::band_tolerance(&upper, &lower, span);
         // Which way a value at an edge moves: the first derivative that is
         // clearly nonzero.
         let rising = || da > eta1 || (da.abs() <= eta1 && dda > 0.0);

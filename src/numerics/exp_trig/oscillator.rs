@@ -202,11 +202,11 @@ impl DampedOscillator {
     pub(crate) fn derivative_bounds<const J: usize>(&self, u: &[f64], err: &[f64]) -> [f64; J] {
         let w = self.omega0;
         let mag = |i: usize| u[i].abs() + err[i];
-        let energy = |i: usize| norm(w * mag(i), mag(i + 1));
+        let energy: [f64; J] = std::array::from_fn(|i| norm(w * mag(i), mag(i + 1)));
         let mut out = [0.0; J];
         for (j, o) in out.iter_mut().enumerate() {
-            let own = energy(j) / w;
-            *o = if j == 0 { own } else { own.min(energy(j - 1)) };
+            let own = energy[j] / w;
+            *o = if j == 0 { own } else { own.min(energy[j - 1]) };
         }
         // The square roots and products above round by a few ulps.
         out.map(|b| b * (1.0 + 8.0 * EPS))
