@@ -204,6 +204,7 @@ mod oscillator;
 mod walk;
 
 pub(crate) use oscillator::DampedOscillator;
+use oscillator::Regime;
 
 /// Machine epsilon.
 const EPS: f64 = f64::EPSILON;
@@ -305,7 +306,8 @@ impl ExpTrig {
 
     /// `f` and its first three derivatives at `s`.
     pub(crate) fn eval4(&self, s: f64) -> [f64; 4] {
-        self.eval4_with(self.poly, self.osc.as_ref(), |x| x, s).0
+        let osc = self.osc.as_ref().map(|o| (o, o.regime()));
+        self.eval4_with(self.poly, osc, |x| x, s).0
     }
 
     /// [`ExpTrig::eval4`] of the function whose quadratic is `poly`, whose
@@ -315,7 +317,7 @@ impl ExpTrig {
     fn eval4_with(
         &self,
         [p0, p1, p2]: [f64; 3],
-        osc: Option<&DampedOscillator>,
+        osc: Option<(&DampedOscillator, Regime)>,
         scale: impl Fn(f64) -> f64 + Copy,
         s: f64,
     ) -> ([f64; 4], [f64; 3]) {
@@ -332,8 +334,8 @@ impl ExpTrig {
             )
         };
         let mut y3 = [0.0; 3];
-        if let Some(o) = osc {
-            let [y, dy, d2y] = o.eval(s);
+        if let Some((o, regime)) = osc {
+            let [y, dy, d2y] = o.eval_in(regime, s);
             y3 = [y, dy, d2y];
             let d3y = -2.0 * o.sigma * d2y - o.omega0 * o.omega0 * dy;
             for (j, v) in [y, dy, d2y, d3y].into_iter().enumerate() {
@@ -529,6 +531,7 @@ impl ExpTrig {
             scale,
             poly,
             osc,
+            regime: osc.map(|o| o.regime()),
             bounds,
             eta,
             osc_err,

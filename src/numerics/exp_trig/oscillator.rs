@@ -61,7 +61,7 @@ pub(crate) struct DampedOscillator {
 
 /// The damping regime and its constants.
 #[derive(Debug, Clone, Copy)]
-enum Regime {
+pub(crate) enum Regime {
     /// `σ < ω0`: `ν = sqrt(ω0² - σ²) > 0`.
     Under { nu: f64 },
     /// `σ = ω0`.
@@ -83,7 +83,8 @@ impl DampedOscillator {
             && ((self.sigma + self.omega0) * (self.sigma + self.omega0)).is_finite()
     }
 
-    fn regime(&self) -> Regime {
+    /// Its damping regime, with the constants of its closed form.
+    pub(crate) fn regime(&self) -> Regime {
         let (s, w) = (self.sigma, self.omega0);
         if s < w {
             Regime::Under {
@@ -102,8 +103,8 @@ impl DampedOscillator {
     }
 
     /// `[c(s), g(s)]` (module documentation).
-    fn basis(&self, s: f64) -> [f64; 2] {
-        match self.regime() {
+    fn basis(&self, regime: Regime, s: f64) -> [f64; 2] {
+        match regime {
             Regime::Under { nu } => {
                 let d = (-self.sigma * s).exp();
                 let (sn, cs) = (nu * s).sin_cos();
@@ -145,7 +146,13 @@ impl DampedOscillator {
     /// `y(s)`, `y'(s)`, `y''(s)` for `s >= 0`, in closed form (module
     /// documentation).
     pub(crate) fn eval(&self, s: f64) -> [f64; 3] {
-        let [c, g] = self.basis(s);
+        self.eval_in(self.regime(), s)
+    }
+
+    /// [`DampedOscillator::eval`] with its regime ([`DampedOscillator::regime`])
+    /// computed once by the caller.
+    pub(crate) fn eval_in(&self, regime: Regime, s: f64) -> [f64; 3] {
+        let [c, g] = self.basis(regime, s);
         let (sg, w2) = (self.sigma, self.omega0 * self.omega0);
         let (u0, u1) = (self.y0, self.y1);
         let u2 = -2.0 * sg * u1 - w2 * u0;

@@ -2,7 +2,7 @@
 //! classes and their resolution (module documentation of [`super`],
 //! "Method").
 
-use super::{Crossing, DampedOscillator, EPS, ExpTrig, Scale, Start, Work, bracket};
+use super::{Crossing, DampedOscillator, EPS, ExpTrig, Regime, Scale, Start, Work, bracket};
 
 /// What a search needs besides the function: `f` scaled by a power of two
 /// ([`ExpTrig::prepare`]), its bounds and its band.
@@ -15,6 +15,8 @@ pub(super) struct Prepared<'f> {
     pub poly: [f64; 3],
     /// The scaled oscillator (`None` also where `f`'s is zero).
     pub osc: Option<DampedOscillator>,
+    /// Its regime.
+    pub regime: Option<Regime>,
     /// `M_j = Σ_k hypot(a_k, b_k) (k w)^j`, `j < 6`.
     pub bounds: [f64; 6],
     /// Rounding bounds `η_j` of the computed `f^(j)`, `j <= 3`, on `[0, s_b]`.
@@ -31,8 +33,12 @@ impl Prepared<'_> {
     /// [`ExpTrig::eval4`] on the scaled copy.
     fn eval4(&self, s: f64) -> ([f64; 4], [f64; 3]) {
         let scale = self.scale;
-        self.f
-            .eval4_with(self.poly, self.osc.as_ref(), move |x| scale.apply(x), s)
+        self.f.eval4_with(
+            self.poly,
+            self.osc.as_ref().zip(self.regime),
+            move |x| scale.apply(x),
+            s,
+        )
     }
 }
 
@@ -236,10 +242,10 @@ impl<'a> Walk<'a> {
     /// Bounds on `|y^(j)|`, `j <= 4`, for `s >= x` (zero without an
     /// oscillator).
     fn osc_bounds(&self, x: f64) -> [f64; 5] {
-        match &self.p.osc {
+        match self.p.osc.as_ref().zip(self.p.regime) {
             None => [0.0; 5],
-            Some(o) => {
-                let y = self.recent(x).map_or_else(|| o.eval(x), |p| p.y);
+            Some((o, regime)) => {
+                let y = self.recent(x).map_or_else(|| o.eval_in(regime, x), |p| p.y);
                 let u = o.extend::<6>(&y);
                 o.derivative_bounds::<5>(&u, &self.p.osc_err[..6])
             }
