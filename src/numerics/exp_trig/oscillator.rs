@@ -209,7 +209,10 @@ impl DampedOscillator {
     pub(crate) fn derivative_bounds<const J: usize>(&self, u: &[f64], err: &[f64]) -> [f64; J] {
         let w = self.omega0;
         let mag = |i: usize| u[i].abs() + err[i];
-        let energy: [f64; J] = std::array::from_fn(|i| norm(w * mag(i), mag(i + 1)));
+        let mut energy = [0.0; J];
+        for (i, e) in energy.iter_mut().enumerate() {
+            *e = norm(w * mag(i), mag(i + 1));
+        }
         let mut out = [0.0; J];
         for (j, o) in out.iter_mut().enumerate() {
             let own = energy[j] / w;

@@ -148,7 +148,10 @@ pub(super) struct Walk<'a> {
     width0: f64,
     work: &'a mut Work,
     /// The last points evaluated.
-    recent: [Option<Point>; RECENT],
+    recent: [Point; RECENT],
+    /// The bits of their times (`u64::MAX`, a NaN no time has, where there
+    /// is none yet).
+    recent_s: [u64; RECENT],
     /// Where the next point evaluated goes in `recent`.
     next_recent: usize,
 }
@@ -179,7 +182,12 @@ impl<'a> Walk<'a> {
             h_min: (1e-10 / rate).max(8.0 * resolution),
             width0: (1.0 / rate).min(hi - lo),
             work,
-            recent: [None; RECENT],
+            recent: [Point {
+                s: f64::NAN,
+                d: [0.0; 4],
+                y: [0.0; 3],
+            }; RECENT],
+            recent_s: [u64::MAX; RECENT],
             next_recent: 0,
         }
     }
@@ -207,17 +215,17 @@ impl<'a> Walk<'a> {
 
     /// Keeps `p` among the last points, in place of the oldest.
     fn remember(&mut self, p: Point) {
-        self.recent[self.next_recent] = Some(p);
+        self.recent[self.next_recent] = p;
+        self.recent_s[self.next_recent] = p.s.to_bits();
         self.next_recent = (self.next_recent + 1) % RECENT;
     }
 
     /// The point at exactly `s` among the last ones evaluated.
     fn recent(&self, s: f64) -> Option<Point> {
-        self.recent
-            .iter()
-            .flatten()
-            .find(|p| p.s.to_bits() == s.to_bits())
-            .copied()
+        let bits = s.to_bits();
+        (0..RECENT)
+            .find(|&i| self.recent_s[i] == bits)
+            .map(|i| self.recent[i])
     }
 
     /// The point at `x`: `left` if it is there, else a new evaluation.
