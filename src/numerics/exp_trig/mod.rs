@@ -382,20 +382,20 @@ impl ExpTrig {
     /// documentation, "Bounds", (R)).
     fn rounding(&self, s_max: f64) -> [f64; 4] {
         let m = self.harmonic_bounds();
-        let osc = self.osc.map(|o| (o, o.rounding_and_bounds(s_max.abs())));
-        self.rounding_with(s_max, self.poly, &m, osc.as_ref(), |x| x)
+        let osc = self.osc.map(|o| o.rounding_and_bounds(s_max.abs()));
+        self.rounding_with(s_max, self.poly, &m, osc, |x| x)
     }
 
     /// [`ExpTrig::rounding`] of the function whose quadratic is `poly`,
     /// whose harmonic coefficients are `scale`d (with their bounds `m`) and
-    /// whose oscillator is `osc`, with its rounding and derivative bounds
-    /// on `[0, s_max]` ([`DampedOscillator::rounding_and_bounds`]).
+    /// whose oscillator has the rounding and derivative bounds `osc` on
+    /// `[0, s_max]` ([`DampedOscillator::rounding_and_bounds`]).
     fn rounding_with(
         &self,
         s_max: f64,
         poly: [f64; 3],
         m: &[f64; 6],
-        osc: Option<&(DampedOscillator, ([f64; 7], [f64; 7]))>,
+        osc: Option<([f64; 7], [f64; 7])>,
         scale: impl Fn(f64) -> f64,
     ) -> [f64; 4] {
         let s = s_max.abs();
@@ -416,7 +416,7 @@ impl ExpTrig {
         let poly_size = [p0 + s * (p1 + s * p2), p1 + 2.0 * p2 * s, 2.0 * p2, 0.0];
         let poly_err = [4.0 * poly_size[0], 3.0 * poly_size[1], 0.0, 0.0];
         let (osc_err, osc_size) = match osc {
-            Some((_, (err, size))) => (*err, *size),
+            Some((err, size)) => (err, size),
             None => ([0.0; 7], [0.0; 7]),
         };
         let mut eta = [0.0; 4];
@@ -517,9 +517,9 @@ impl ExpTrig {
             return None;
         }
         let bounds = self.harmonic_bounds_with(by);
-        let osc_parts = osc.map(|o| (o, o.rounding_and_bounds(s_b.abs())));
-        let eta = self.rounding_with(s_b, poly, &bounds, osc_parts.as_ref(), by);
-        let osc_err = osc_parts.map_or([0.0; 7], |(_, (err, _))| err);
+        let osc_parts = osc.map(|o| o.rounding_and_bounds(s_b.abs()));
+        let eta = self.rounding_with(s_b, poly, &bounds, osc_parts, by);
+        let osc_err = osc_parts.map_or([0.0; 7], |(err, _)| err);
         let tau = by(tol.max(0.0)).max(4.0 * eta[0]);
         let finite = eta
             .iter()
