@@ -37,7 +37,7 @@ fn progress(from: f64, s: f64, time: f64) -> f64 {
 /// tolerance, so that a stick phase never starts within it moving
 /// outwards.
 pub(super) fn band_tolerance(upper: &ExpTrig, lower: &ExpTrig, span: f64) -> f64 {
-    4.0 * upper.eval_error_bound(span)[0].max(lower.eval_error_bound(span)[0])
+    4.0 * upper.larger_rounding_level(lower, span)
 }
 
 /// How a stick phase ends.
