@@ -207,8 +207,7 @@ impl ModeFunctions {
         [lo, hi]: [f64; 2],
         counters: &mut WorkCounters,
     ) -> StickExit {
-        let upper = self.band_function(tau, rod.x, rod.v, hi);
-        let lower = self.band_function(tau, rod.x, rod.v, lo);
+        let [upper, lower] = self.band_functions(tau, rod.x, rod.v, [hi, lo]);
         let tol = band_tolerance(&upper, &lower, span);
         // A stick phase that starts on an edge (within `tol`, where the
         // engine decided it moves inwards: [`band_tolerance`]) starts at
