@@ -322,7 +322,7 @@ fn mutated_scenes_give_a_result_or_one_error_line() {
                 "--json",
                 "--quiet",
                 "--time-limit",
-                "2",
+                "0.5",
                 "-o",
                 output.to_str().unwrap(),
             ],
