@@ -135,15 +135,29 @@ impl ModeFunctions {
     /// `tau`: in stick the stuck system's acceleration against a band edge,
     /// in slip `v_rel' = a_R - a_s`.
     pub(super) fn band_function(&self, tau: f64, x: f64, v: f64, level: f64) -> ExpTrig {
+        let [f] = self.band_functions(tau, x, v, [level]);
+        f
+    }
+
+    /// [`ModeFunctions::band_function`] at each of `levels`, the free
+    /// oscillation computed once.
+    pub(super) fn band_functions<const N: usize>(
+        &self,
+        tau: f64,
+        x: f64,
+        v: f64,
+        levels: [f64; N],
+    ) -> [ExpTrig; N] {
         let free = self.free(tau, Kinematics { x, v });
-        ExpTrig {
+        let acceleration = free.derivative().derivative();
+        levels.map(|level| ExpTrig {
             poly: [-level, 0.0, 0.0],
             w: self.w,
             phi: tau,
             a: self.acc[0].clone(),
             b: self.acc[1].clone(),
-            osc: Some(free.derivative().derivative()),
-        }
+            osc: Some(acceleration),
+        })
     }
 
     /// `[a_st - a_0^+, a_st - a_0^-]` for the rod state `(x, v)` at `tau`
@@ -296,7 +310,8 @@ impl ModeFunctions {
         // the finder's open start; only one that starts farther (a grazing
         // the slider slides on from) is skipped as the event it was. A
         // v_rel that turns back within tol_v is then a tangency: a grazing.
-        let rounding = 4.0 * f.eval_error_bound(span)[0];
+        let eta = f.eval_error_bound(span)[0];
+        let rounding = 4.0 * eta;
         let start = if departure && f.eval(0.0)[0].abs() > rounding {
             Start::AfterEvent
         } else {
@@ -339,7 +354,7 @@ impl ModeFunctions {
                 time_error: time_error + {
                     let slope = f.eval(s)[1].abs();
                     if slope > 0.0 {
-                        f.eval_error_bound(span)[0] / slope
+                        eta / slope
                     } else {
                         f64::INFINITY
                     }

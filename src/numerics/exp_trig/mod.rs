@@ -204,6 +204,7 @@ mod oscillator;
 mod walk;
 
 pub(crate) use oscillator::DampedOscillator;
+use oscillator::Regime;
 
 /// Machine epsilon.
 const EPS: f64 = f64::EPSILON;
@@ -305,16 +306,37 @@ impl ExpTrig {
 
     /// `f` and its first three derivatives at `s`.
     pub(crate) fn eval4(&self, s: f64) -> [f64; 4] {
-        let [p0, p1, p2] = self.poly;
+        let osc = self.osc.as_ref().map(|o| (o, o.regime()));
+        self.eval4_with(self.poly, osc, |x| x, s).0
+    }
+
+    /// [`ExpTrig::eval4`] of the function whose quadratic is `poly`, whose
+    /// oscillator is `osc` and whose harmonic coefficients are `scale`d
+    /// (the finder's exactly scaled copy, without copying the harmonics);
+    /// also the oscillator's `y, y', y''` at `s` (zero without one).
+    fn eval4_with(
+        &self,
+        [p0, p1, p2]: [f64; 3],
+        osc: Option<(&DampedOscillator, Regime)>,
+        scale: impl Fn(f64) -> f64 + Copy,
+        s: f64,
+    ) -> ([f64; 4], [f64; 3]) {
         let mut out = [p0 + s * (p1 + s * p2), p1 + 2.0 * p2 * s, 2.0 * p2, 0.0];
+        let theta = self.w * (self.phi + s);
         let trig = if self.a.len() == self.b.len() {
-            harmonic_sums(&self.a, &self.b, self.w, self.w * (self.phi + s))
+            let pairs = self.a.iter().zip(&self.b).map(|(&a, &b)| (a, b));
+            harmonic_sums(pairs.map(|(a, b)| (scale(a), scale(b))), self.w, theta)
         } else {
-            let (a, b): (Vec<f64>, Vec<f64>) = self.pairs().unzip();
-            harmonic_sums(&a, &b, self.w, self.w * (self.phi + s))
+            harmonic_sums(
+                self.pairs().map(|(a, b)| (scale(a), scale(b))),
+                self.w,
+                theta,
+            )
         };
-        if let Some(o) = &self.osc {
-            let [y, dy, d2y] = o.eval(s);
+        let mut y3 = [0.0; 3];
+        if let Some((o, regime)) = osc {
+            let [y, dy, d2y] = o.eval_in(regime, s);
+            y3 = [y, dy, d2y];
             let d3y = -2.0 * o.sigma * d2y - o.omega0 * o.omega0 * dy;
             for (j, v) in [y, dy, d2y, d3y].into_iter().enumerate() {
                 out[j] += v;
@@ -323,7 +345,7 @@ impl ExpTrig {
         for (o, t) in out.iter_mut().zip(trig) {
             *o += t;
         }
-        out
+        (out, y3)
     }
 
     /// Bounds on the rounding errors of the computed `f(s)`, `f'(s)`,
@@ -336,8 +358,13 @@ impl ExpTrig {
 
     /// `Σ_k hypot(a_k, b_k) (k w)^j`, `j < 6`: bounds on `|T^(j)|`.
     pub(crate) fn harmonic_bounds(&self) -> [f64; 6] {
+        self.harmonic_bounds_with(|x| x)
+    }
+
+    /// [`ExpTrig::harmonic_bounds`] with the harmonic coefficients `scale`d.
+    fn harmonic_bounds_with(&self, scale: impl Fn(f64) -> f64) -> [f64; 6] {
         let mut m = [0.0; 6];
-        for (k, (a, b)) in self.pairs().enumerate() {
+        for (k, (a, b)) in self.pairs().map(|(a, b)| (scale(a), scale(b))).enumerate() {
             let (q, size) = (
                 (k + 1) as f64 * self.w,
                 oscillator::norm(a.abs(), b.abs()) * (1.0 + 2.0 * EPS),
@@ -354,11 +381,28 @@ impl ExpTrig {
     /// Rounding bounds of `f^(j)`, `j <= 3`, on `[0, s_max]` (module
     /// documentation, "Bounds", (R)).
     fn rounding(&self, s_max: f64) -> [f64; 4] {
+        let m = self.harmonic_bounds();
+        let osc = self.osc.map(|o| o.rounding_and_bounds(s_max.abs()));
+        self.rounding_with(s_max, self.poly, &m, osc, |x| x)
+    }
+
+    /// [`ExpTrig::rounding`] of the function whose quadratic is `poly`,
+    /// whose harmonic coefficients are `scale`d (with their bounds `m`) and
+    /// whose oscillator has the rounding and derivative bounds `osc` on
+    /// `[0, s_max]` ([`DampedOscillator::rounding_and_bounds`]).
+    fn rounding_with(
+        &self,
+        s_max: f64,
+        poly: [f64; 3],
+        m: &[f64; 6],
+        osc: Option<([f64; 7], [f64; 7])>,
+        scale: impl Fn(f64) -> f64,
+    ) -> [f64; 4] {
         let s = s_max.abs();
         let n = self.harmonics() as f64;
-        let [p0, p1, p2] = self.poly.map(f64::abs);
+        let [p0, p1, p2] = poly.map(f64::abs);
         let mut recurrence = [0.0; 4];
-        for (k, (a, b)) in self.pairs().enumerate() {
+        for (k, (a, b)) in self.pairs().map(|(a, b)| (scale(a), scale(b))).enumerate() {
             let (k, size) = ((k + 1) as f64, a.abs() + b.abs());
             let q = k * self.w;
             let weight = (5.0 * k + n + 8.0) * size;
@@ -368,16 +412,12 @@ impl ExpTrig {
                 t *= q;
             }
         }
-        let m = self.harmonic_bounds();
         let phase = 2.5 * (self.phi.abs() + s);
         let poly_size = [p0 + s * (p1 + s * p2), p1 + 2.0 * p2 * s, 2.0 * p2, 0.0];
         let poly_err = [4.0 * poly_size[0], 3.0 * poly_size[1], 0.0, 0.0];
-        let (osc_err, osc_size) = match &self.osc {
-            Some(o) => (
-                o.rounding(s),
-                o.derivative_bounds::<4>(&o.extend::<5>(&[o.y0, o.y1]), &[0.0; 5]),
-            ),
-            None => ([0.0; 7], [0.0; 4]),
+        let (osc_err, osc_size) = match osc {
+            Some((err, size)) => (err, size),
+            None => ([0.0; 7], [0.0; 7]),
         };
         let mut eta = [0.0; 4];
         for j in 0..4 {
@@ -441,8 +481,10 @@ impl ExpTrig {
 
     /// The search's data: `f` scaled by a power of two (exact) to a largest
     /// coefficient in `[1, 2)`, its bounds, and the band. `None` for input
-    /// outside the class or a constant `f`.
-    fn prepare(&self, s_a: f64, s_b: f64, tol: f64) -> Option<walk::Prepared> {
+    /// outside the class or a constant `f`. The scaled harmonics are not
+    /// copied: [`walk::Prepared::eval4`] scales them as it goes, with the
+    /// same products as a scaled copy.
+    fn prepare(&self, s_a: f64, s_b: f64, tol: f64) -> Option<walk::Prepared<'_>> {
         let times_ok = s_a.is_finite() && s_b.is_finite() && s_a >= 0.0 && s_b > s_a;
         if !times_ok || tol.is_nan() || !self.is_valid() {
             return None;
@@ -459,39 +501,37 @@ impl ExpTrig {
         if largest == 0.0 {
             return None;
         }
-        let e = -(largest.log2().floor() as i32);
-        let scale = |x: f64| ldexp(x, e);
-        let (a, b): (Vec<f64>, Vec<f64>) = self.pairs().map(|(a, b)| (scale(a), scale(b))).unzip();
-        let f = ExpTrig {
-            poly: self.poly.map(scale),
-            w: self.w,
-            phi: self.phi,
-            a,
-            b,
-            osc: osc.map(|o| DampedOscillator {
-                y0: scale(o.y0),
-                y1: scale(o.y1),
-                ..o
-            }),
-        };
-        let constant = f.poly[1] == 0.0
-            && f.poly[2] == 0.0
-            && f.osc.is_none()
-            && f.pairs().all(|(a, b)| a == 0.0 && b == 0.0);
+        let scale = Scale::new(-(largest.log2().floor() as i32));
+        let by = |x: f64| scale.apply(x);
+        let poly = self.poly.map(by);
+        let osc = osc.map(|o| DampedOscillator {
+            y0: by(o.y0),
+            y1: by(o.y1),
+            ..o
+        });
+        let constant = poly[1] == 0.0
+            && poly[2] == 0.0
+            && osc.is_none()
+            && self.pairs().all(|(a, b)| by(a) == 0.0 && by(b) == 0.0);
         if constant {
             return None;
         }
-        let eta = f.rounding(s_b);
-        let bounds = f.harmonic_bounds();
-        let osc_err = f.osc.map_or([0.0; 7], |o| o.rounding(s_b));
-        let tau = ldexp(tol.max(0.0), e).max(4.0 * eta[0]);
+        let bounds = self.harmonic_bounds_with(by);
+        let osc_parts = osc.map(|o| o.rounding_and_bounds(s_b.abs()));
+        let eta = self.rounding_with(s_b, poly, &bounds, osc_parts, by);
+        let osc_err = osc_parts.map_or([0.0; 7], |(err, _)| err);
+        let tau = by(tol.max(0.0)).max(4.0 * eta[0]);
         let finite = eta
             .iter()
             .chain(&bounds)
             .chain(&osc_err)
             .all(|x| x.is_finite());
         finite.then_some(walk::Prepared {
-            f,
+            f: self,
+            scale,
+            poly,
+            osc,
+            regime: osc.map(|o| o.regime()),
             bounds,
             eta,
             osc_err,
@@ -500,13 +540,39 @@ impl ExpTrig {
     }
 }
 
+/// Multiplication by `2^e`: [`ldexp`], with the factor computed once.
+#[derive(Debug, Clone, Copy)]
+struct Scale {
+    e: i32,
+    /// `2^e`, where [`ldexp`] multiplies by it in one step.
+    factor: f64,
+}
+
+impl Scale {
+    fn new(e: i32) -> Self {
+        Scale {
+            e,
+            factor: 2f64.powi(e),
+        }
+    }
+
+    /// `x · 2^e`, the same operation as `ldexp(x, e)`.
+    fn apply(self, x: f64) -> f64 {
+        if self.e.abs() <= 1000 {
+            x * self.factor
+        } else {
+            ldexp(x, self.e)
+        }
+    }
+}
+
 /// `Σ_k (a_k cos kθ + b_k sin kθ)` and its first three derivatives in `s`
 /// (`dθ/ds = w`), one `sin_cos` and the angle-addition recurrence.
-fn harmonic_sums(a: &[f64], b: &[f64], w: f64, theta: f64) -> [f64; 4] {
+fn harmonic_sums(pairs: impl Iterator<Item = (f64, f64)>, w: f64, theta: f64) -> [f64; 4] {
     let (s1, c1) = theta.sin_cos();
     let (mut ck, mut sk) = (1.0, 0.0);
     let mut t = [0.0; 4];
-    for (k, (&ak, &bk)) in a.iter().zip(b).enumerate() {
+    for (k, (ak, bk)) in pairs.enumerate() {
         let c = ck * c1 - sk * s1;
         sk = sk * c1 + ck * s1;
         ck = c;

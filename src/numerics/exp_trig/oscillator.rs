@@ -61,7 +61,7 @@ pub(crate) struct DampedOscillator {
 
 /// The damping regime and its constants.
 #[derive(Debug, Clone, Copy)]
-enum Regime {
+pub(crate) enum Regime {
     /// `σ < ω0`: `ν = sqrt(ω0² - σ²) > 0`.
     Under { nu: f64 },
     /// `σ = ω0`.
@@ -83,7 +83,8 @@ impl DampedOscillator {
             && ((self.sigma + self.omega0) * (self.sigma + self.omega0)).is_finite()
     }
 
-    fn regime(&self) -> Regime {
+    /// Its damping regime, with the constants of its closed form.
+    pub(crate) fn regime(&self) -> Regime {
         let (s, w) = (self.sigma, self.omega0);
         if s < w {
             Regime::Under {
@@ -102,8 +103,8 @@ impl DampedOscillator {
     }
 
     /// `[c(s), g(s)]` (module documentation).
-    fn basis(&self, s: f64) -> [f64; 2] {
-        match self.regime() {
+    fn basis(&self, regime: Regime, s: f64) -> [f64; 2] {
+        match regime {
             Regime::Under { nu } => {
                 let d = (-self.sigma * s).exp();
                 let (sn, cs) = (nu * s).sin_cos();
@@ -145,7 +146,13 @@ impl DampedOscillator {
     /// `y(s)`, `y'(s)`, `y''(s)` for `s >= 0`, in closed form (module
     /// documentation).
     pub(crate) fn eval(&self, s: f64) -> [f64; 3] {
-        let [c, g] = self.basis(s);
+        self.eval_in(self.regime(), s)
+    }
+
+    /// [`DampedOscillator::eval`] with its regime ([`DampedOscillator::regime`])
+    /// computed once by the caller.
+    pub(crate) fn eval_in(&self, regime: Regime, s: f64) -> [f64; 3] {
+        let [c, g] = self.basis(regime, s);
         let (sg, w2) = (self.sigma, self.omega0 * self.omega0);
         let (u0, u1) = (self.y0, self.y1);
         let u2 = -2.0 * sg * u1 - w2 * u0;
@@ -202,11 +209,14 @@ impl DampedOscillator {
     pub(crate) fn derivative_bounds<const J: usize>(&self, u: &[f64], err: &[f64]) -> [f64; J] {
         let w = self.omega0;
         let mag = |i: usize| u[i].abs() + err[i];
-        let energy = |i: usize| norm(w * mag(i), mag(i + 1));
+        let mut energy = [0.0; J];
+        for (i, e) in energy.iter_mut().enumerate() {
+            *e = norm(w * mag(i), mag(i + 1));
+        }
         let mut out = [0.0; J];
         for (j, o) in out.iter_mut().enumerate() {
-            let own = energy(j) / w;
-            *o = if j == 0 { own } else { own.min(energy(j - 1)) };
+            let own = energy[j] / w;
+            *o = if j == 0 { own } else { own.min(energy[j - 1]) };
         }
         // The square roots and products above round by a few ulps.
         out.map(|b| b * (1.0 + 8.0 * EPS))
@@ -224,7 +234,15 @@ impl DampedOscillator {
     /// the sums of their terms' magnitudes `U_j`, `V_j`. So the error is at
     /// most `(8 + ν s_max) ε (U_j + G V_j)`, here doubled. The recurrence
     /// adds `2σ e_{j-1} + ω0² e_{j-2}` and the rounding of its own terms.
+    #[cfg(test)]
     pub(crate) fn rounding(&self, s_max: f64) -> [f64; 7] {
+        self.rounding_and_bounds(s_max).0
+    }
+
+    /// [`DampedOscillator::rounding`] and the bounds on `|y^(j)|`, `j < 7`,
+    /// for all `s >= 0` it is built on
+    /// ([`DampedOscillator::derivative_bounds`] from `y0`, `y1`).
+    pub(crate) fn rounding_and_bounds(&self, s_max: f64) -> ([f64; 7], [f64; 7]) {
         let (sg, w2) = (self.sigma, self.omega0 * self.omega0);
         let arg = match self.regime() {
             Regime::Under { nu } => nu * s_max.max(0.0),
@@ -257,7 +275,7 @@ impl DampedOscillator {
                     + 4.0 * EPS * (2.0 * sg * bound[j - 1] + w2 * bound[j - 2])
             };
         }
-        e
+        (e, bound)
     }
 }
 

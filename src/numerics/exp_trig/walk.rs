@@ -2,13 +2,21 @@
 //! classes and their resolution (module documentation of [`super`],
 //! "Method").
 
-use super::{Crossing, EPS, ExpTrig, Start, Work, bracket};
+use super::{Crossing, DampedOscillator, EPS, ExpTrig, Regime, Scale, Start, Work, bracket};
 
-/// What a search needs besides the function: the scaled `f`
+/// What a search needs besides the function: `f` scaled by a power of two
 /// ([`ExpTrig::prepare`]), its bounds and its band.
-pub(super) struct Prepared {
-    /// `f` scaled by a power of two, `a` and `b` of one length.
-    pub f: ExpTrig,
+pub(super) struct Prepared<'f> {
+    /// `f` unscaled; its harmonics are scaled as they are used.
+    pub f: &'f ExpTrig,
+    /// The power of two.
+    pub scale: Scale,
+    /// The scaled quadratic.
+    pub poly: [f64; 3],
+    /// The scaled oscillator (`None` also where `f`'s is zero).
+    pub osc: Option<DampedOscillator>,
+    /// Its regime.
+    pub regime: Option<Regime>,
     /// `M_j = Σ_k hypot(a_k, b_k) (k w)^j`, `j < 6`.
     pub bounds: [f64; 6],
     /// Rounding bounds `η_j` of the computed `f^(j)`, `j <= 3`, on `[0, s_b]`.
@@ -19,12 +27,34 @@ pub(super) struct Prepared {
     pub tau: f64,
 }
 
-/// Computed `f`, `f'`, `f''`, `f'''` at `s`.
+impl Prepared<'_> {
+    /// The scaled `f` and its first three derivatives at `s`, and its
+    /// oscillator's `y, y', y''`: the values, bit for bit, of
+    /// [`ExpTrig::eval4`] on the scaled copy.
+    fn eval4(&self, s: f64) -> ([f64; 4], [f64; 3]) {
+        let scale = self.scale;
+        self.f.eval4_with(
+            self.poly,
+            self.osc.as_ref().zip(self.regime),
+            move |x| scale.apply(x),
+            s,
+        )
+    }
+}
+
+/// Computed `f`, `f'`, `f''`, `f'''` at `s`, and the oscillator's
+/// `y, y', y''`.
 #[derive(Debug, Clone, Copy)]
 struct Point {
     s: f64,
     d: [f64; 4],
+    y: [f64; 3],
 }
+
+/// How many of the last points the walk keeps: a halved piece's left half
+/// ends at the midpoint just evaluated, and a piece's right end is the
+/// next one's left end.
+const RECENT: usize = 4;
 
 /// What the walk knows about `f` left of the current piece.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -107,7 +137,7 @@ fn interval_sign((lo, hi): (f64, f64)) -> i8 {
 
 /// One search ([`Walk::run`]).
 pub(super) struct Walk<'a> {
-    p: &'a Prepared,
+    p: &'a Prepared<'a>,
     lo: f64,
     hi: f64,
     /// Time resolution of a root (the rounding of the phase).
@@ -117,17 +147,25 @@ pub(super) struct Walk<'a> {
     /// Width of the first piece.
     width0: f64,
     work: &'a mut Work,
+    /// The last points evaluated.
+    recent: [Point; RECENT],
+    /// The bits of their times (`u64::MAX`, a NaN no time has, where there
+    /// is none yet).
+    recent_s: [u64; RECENT],
+    /// Where the next point evaluated goes in `recent`.
+    next_recent: usize,
 }
 
 impl<'a> Walk<'a> {
-    pub(super) fn new(p: &'a Prepared, lo: f64, hi: f64, work: &'a mut Work) -> Self {
-        let f = &p.f;
-        let top =
-            f.a.iter()
-                .zip(&f.b)
-                .rposition(|(&a, &b)| a != 0.0 || b != 0.0)
-                .map_or(0.0, |i| (i + 1) as f64 * f.w);
-        let osc_rate = f.osc.map_or(0.0, |o| {
+    pub(super) fn new(p: &'a Prepared<'a>, lo: f64, hi: f64, work: &'a mut Work) -> Self {
+        let f = p.f;
+        let top = f
+            .pairs()
+            .enumerate()
+            .filter(|&(_, (a, b))| p.scale.apply(a) != 0.0 || p.scale.apply(b) != 0.0)
+            .last()
+            .map_or(0.0, |(i, _)| (i + 1) as f64 * f.w);
+        let osc_rate = p.osc.map_or(0.0, |o| {
             if o.sigma > o.omega0 {
                 o.sigma + ((o.sigma - o.omega0) * (o.sigma + o.omega0)).sqrt()
             } else {
@@ -144,6 +182,13 @@ impl<'a> Walk<'a> {
             h_min: (1e-10 / rate).max(8.0 * resolution),
             width0: (1.0 / rate).min(hi - lo),
             work,
+            recent: [Point {
+                s: f64::NAN,
+                d: [0.0; 4],
+                y: [0.0; 3],
+            }; RECENT],
+            recent_s: [u64::MAX; RECENT],
+            next_recent: 0,
         }
     }
 
@@ -155,13 +200,32 @@ impl<'a> Walk<'a> {
         self.p.eta
     }
 
-    /// `f` and three derivatives at `s`, counted.
+    /// `f` and three derivatives at `s`: one of the last points, or an
+    /// evaluation, counted.
     fn point(&mut self, s: f64) -> Point {
-        self.work.evaluations += 1;
-        Point {
-            s,
-            d: self.p.f.eval4(s),
+        if let Some(p) = self.recent(s) {
+            return p;
         }
+        self.work.evaluations += 1;
+        let (d, y) = self.p.eval4(s);
+        let p = Point { s, d, y };
+        self.remember(p);
+        p
+    }
+
+    /// Keeps `p` among the last points, in place of the oldest.
+    fn remember(&mut self, p: Point) {
+        self.recent[self.next_recent] = p;
+        self.recent_s[self.next_recent] = p.s.to_bits();
+        self.next_recent = (self.next_recent + 1) % RECENT;
+    }
+
+    /// The point at exactly `s` among the last ones evaluated.
+    fn recent(&self, s: f64) -> Option<Point> {
+        let bits = s.to_bits();
+        (0..RECENT)
+            .find(|&i| self.recent_s[i] == bits)
+            .map(|i| self.recent[i])
     }
 
     /// The point at `x`: `left` if it is there, else a new evaluation.
@@ -186,10 +250,11 @@ impl<'a> Walk<'a> {
     /// Bounds on `|y^(j)|`, `j <= 4`, for `s >= x` (zero without an
     /// oscillator).
     fn osc_bounds(&self, x: f64) -> [f64; 5] {
-        match &self.p.f.osc {
+        match self.p.osc.as_ref().zip(self.p.regime) {
             None => [0.0; 5],
-            Some(o) => {
-                let u = o.extend::<6>(&o.eval(x));
+            Some((o, regime)) => {
+                let y = self.recent(x).map_or_else(|| o.eval_in(regime, x), |p| p.y);
+                let u = o.extend::<6>(&y);
                 o.derivative_bounds::<5>(&u, &self.p.osc_err[..6])
             }
         }
@@ -263,10 +328,10 @@ impl<'a> Walk<'a> {
         let h = (m - x).max(r - m) * (1.0 + 4.0 * EPS);
         let d = self.point(m).d;
         let e = self.eta();
-        let f = &self.p.f;
+        let poly = self.p.poly;
         let mj = &self.p.bounds;
         let safe = 1.0 + 1e-10;
-        let b2 = (mj[2] + y[2] + 2.0 * f.poly[2].abs()) * safe;
+        let b2 = (mj[2] + y[2] + 2.0 * poly[2].abs()) * safe;
         let b3 = (mj[3] + y[3]) * safe;
         let b4 = (mj[4] + y[4]) * safe;
         // upper bounds at m, lower bounds at m
@@ -282,7 +347,7 @@ impl<'a> Walk<'a> {
         let margin0 = 8.0 * EPS * (up[0] + h * (up[1] + up2 * h));
         let taylor =
             low[0] - up[1] * h - (0.5 * up2 * h * h).min(h * h * (0.5 * up[2] + up3 * h / 6.0));
-        let [_, p1, p2] = f.poly;
+        let [_, p1, p2] = poly;
         let poly_slope = p1.abs() + 2.0 * p2.abs() * (m.abs() + h);
         let poly = low[0] - 2.0 * (mj[0] + y[0]) - h * (poly_slope + p2.abs() * h);
         let convex = if l2 > 0.0 && d[0] * d[2] > 0.0 {
@@ -418,11 +483,13 @@ impl<'a> Walk<'a> {
     /// The zero of `f` between `a` and `b`, whose computed values have
     /// opposite signs (bracketed Newton, [`bracket::solve`]).
     fn solve_value(&mut self, a: &Point, b: &Point) -> f64 {
-        let f = &self.p.f;
+        let p = self.p;
+        let mut last = None;
         let root = bracket::solve(
             |t| {
-                let [v, dv, _, _] = f.eval4(t);
-                (v, dv)
+                let (d, y) = p.eval4(t);
+                last = Some(Point { s: t, d, y });
+                (d[0], d[1])
             },
             (a.s, b.s),
             (a.d[0], b.d[0]),
@@ -431,6 +498,9 @@ impl<'a> Walk<'a> {
             None,
         );
         self.work.evaluations += u64::from(root.iterations);
+        if let Some(point) = last {
+            self.remember(point);
+        }
         root.t
     }
 
@@ -478,11 +548,13 @@ impl<'a> Walk<'a> {
             return self.monotone(state, &a, &b, rising);
         }
         let c = if da < -eta1 && db > eta1 {
-            let f = &self.p.f;
+            let p = self.p;
+            let mut last = None;
             let root = bracket::solve(
                 |t| {
-                    let [_, dv, d2v, _] = f.eval4(t);
-                    (dv, d2v)
+                    let (d, y) = p.eval4(t);
+                    last = Some(Point { s: t, d, y });
+                    (d[1], d[2])
                 },
                 (x, r),
                 (a.d[1], b.d[1]),
@@ -491,6 +563,9 @@ impl<'a> Walk<'a> {
                 None,
             );
             self.work.evaluations += u64::from(root.iterations);
+            if let Some(point) = last {
+                self.remember(point);
+            }
             self.point(root.t)
         } else if a.d[1].abs() <= b.d[1].abs() {
             a
