@@ -20,7 +20,7 @@
 
 use crate::error::SimulationError;
 use crate::signal::Signal;
-pub use driven::{DriveProfile, DrivenEngine, DrivenState};
+pub use driven::{DriveProfile, DrivenEngine, DrivenState, SliderState};
 pub use event::{EventEngine, EventOptions};
 pub use fixed_step::{FixedStepEngine, FixedStepOptions};
 pub use observer::{Observer, PeriodEnd};

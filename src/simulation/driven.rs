@@ -267,6 +267,7 @@ impl<'a> Settle<'a> {
                 rod_v: next[1],
                 slider_v: next[2],
                 mode: p.mode,
+                slider: p.slider,
             };
             if correction <= CONVERGED {
                 return Ok(self.attracting(FixedPoint {
