@@ -47,7 +47,11 @@ the phase.
   direction that ends the slip; for a free-ended spring x_S = gap (contact
   made or lost, so no step straddles the kink of the force). Non-terminal
   events dF_spring/dt = 0 give the force's extrema. Every event is located by
-  scipy's root finder on the step's dense output.
+  scipy's root finder on the step's dense output. solve_ivp runs in the
+  period's units, u = tau / T, because its event location works to an
+  absolute 4 eps in its time variable (in seconds that would be 9e-16 s, an
+  error a_R * 9e-16 s ~ 4e-11 m/s in v_rel at every event). v_S is continuous
+  across every event and is kept as integrated.
 * Stick: no ODE, x_S = x_R + c. The exit is the first tau where
   |f(tau)| > mu_0 F_c, found by a certified scan: a grid of 4096 cells per
   period, a cell being free of crossings when h(a) + h(b) > L (b - a) for
@@ -296,13 +300,17 @@ class Simulator:
         """Integrate slip in direction s from tau0; returns (tau, y, why)."""
         sp, rod, m, fd, gt = self.spring, self.rod, self.m, self.fd, self.gt
 
-        def rhs(t, y):
+        # solve_ivp runs in the period's units (u = tau / T): its event
+        # location works to an absolute tolerance of 4 eps in u
+        T = rod.T
+
+        def rhs(u, y):
             x, v = y[0], y[1]
             f = sp.force(x, v)
-            return [v, (s * fd + m * gt - f) / m, x, f, sp.contact(x)]
+            return [T * v, T * (s * fd + m * gt - f) / m, T * x, T * f, T * sp.contact(x)]
 
-        def ev_vrel(t, y):
-            return rod.v(t) - y[1]
+        def ev_vrel(u, y):
+            return rod.v(u * T) - y[1]
 
         ev_vrel.terminal = True
         ev_vrel.direction = -s
@@ -317,36 +325,37 @@ class Simulator:
             else:
                 direction = -1.0 if x0 > sp.gap else 1.0
 
-            def ev_contact(t, y):
+            def ev_contact(u, y):
                 return y[0] - sp.gap
 
             ev_contact.terminal = True
             ev_contact.direction = direction
             events.append(ev_contact)
 
-        def ev_fext(t, y):
+        def ev_fext(u, y):
             x, v = y[0], y[1]
             a = (s * fd + m * gt - sp.force(x, v)) / m
             return sp.rate(x, v, a)
 
         ev_fext.terminal = False
-        events.append(ev_fext)
+        if sp.kind != "none":
+            events.append(ev_fext)
         y0 = np.array([y0[0], y0[1], 0.0, 0.0, 0.0])
         sol = solve_ivp(
             rhs,
-            (tau0, tau_end),
+            (tau0 / T, tau_end / T),
             y0,
             method="DOP853",
             rtol=self.rtol,
             atol=self.atol,
             events=events,
-            max_step=self.max_step,
+            max_step=self.max_step / T,
             dense_output=st is not None and st.pieces is not None,
         )
         if sol.status < 0:
             raise RuntimeError(f"solve_ivp failed: {sol.message}")
         y1 = sol.y[:, -1]
-        tau1 = sol.t[-1]
+        tau1 = tau_end if sol.status == 0 else sol.t[-1] * T
         why = "end"
         if sol.status == 1:
             if len(sol.t_events[0]):
@@ -358,11 +367,11 @@ class Simulator:
             st.int_f += y1[3]
             st.int_contact += y1[4]
             st.force_sample(sp.force(np.array([y0[0], y1[0]]), np.array([y0[1], y1[1]])))
-            fe = sol.y_events[-1]
+            fe = sol.y_events[-1] if sp.kind != "none" else []
             if len(fe):
                 st.force_sample(sp.force(fe[:, 0], fe[:, 1]))
             if st.pieces is not None:
-                st.pieces.append(("slip", tau0, tau1, (s, sol.sol)))
+                st.pieces.append(("slip", tau0, tau1, (s, lambda tau: sol.sol(tau / T))))
         return tau1, y1[:2], why
 
     # ---- one stick piece -----------------------------------------------------
@@ -440,7 +449,7 @@ class Simulator:
                 tau, y, why = self.slip(tau, (x, v), mode, T, st)
                 x, v = float(y[0]), float(y[1])
                 if why == "vrel":
-                    v = rod.v(tau)
+                    # v_S is kept as integrated (continuous across the event)
                     f = self.needed(tau, x, v)
                     if abs(f) <= self.f0:
                         mode = "stick"
