@@ -20,7 +20,7 @@
 
 use crate::error::SimulationError;
 use crate::signal::Signal;
-pub use driven::{DriveProfile, DrivenEngine, DrivenState, SliderState};
+pub use driven::{DriveProfile, DrivenEngine, DrivenState, SliderState, SpringProfile};
 pub use event::{EventEngine, EventOptions};
 pub use fixed_step::{FixedStepEngine, FixedStepOptions};
 pub use observer::{Observer, PeriodEnd};
@@ -372,6 +372,18 @@ pub trait PeriodEngine {
     /// the last period ended in; `None` otherwise (and before the first
     /// period).
     fn boundary_state(&self) -> Option<DrivenState> {
+        None
+    }
+
+    /// For an engine with a spring against the slider: what the spring
+    /// reads over the `periods` periods whose segments and events (in
+    /// order) are given, starting from `start`; `None` otherwise.
+    fn spring_profile(
+        &self,
+        _start: &DrivenState,
+        _recorded: (&[Segment], &[Event]),
+        _periods: u64,
+    ) -> Option<SpringProfile> {
         None
     }
 

@@ -51,8 +51,10 @@
 mod profile;
 mod segment;
 mod slider;
+mod spring_profile;
 
 pub use profile::DriveProfile;
+pub use spring_profile::SpringProfile;
 
 use super::contact::{Band, Contact, transition};
 use super::{
@@ -772,6 +774,23 @@ impl PeriodEngine for DrivenEngine<'_> {
 
     fn boundary_state(&self) -> Option<DrivenState> {
         self.state
+    }
+
+    fn spring_profile(
+        &self,
+        start: &DrivenState,
+        (segments, events): (&[Segment], &[Event]),
+        periods: u64,
+    ) -> Option<SpringProfile> {
+        let law = self.spring.as_ref()?;
+        Some(spring_profile::profile(
+            law,
+            start,
+            (segments, events),
+            (self.period, periods),
+            |dir| self.contact.slip_acceleration(dir),
+            |mode| self.functions(mode),
+        ))
     }
 
     fn restart_from(&mut self, state: DrivenState) -> bool {

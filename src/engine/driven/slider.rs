@@ -124,6 +124,11 @@ impl SpringLaw {
         }
     }
 
+    /// `m_s` (kg).
+    pub(super) fn slider_mass(&self) -> f64 {
+        self.slider_mass
+    }
+
     /// The constant part of the stuck slider's spring term over `m_s`,
     /// without the rod's own position (`kappa delta + F_p / m_s` tied,
     /// `kappa (delta - x_gap)` free end in contact), or `None` out of
