@@ -39,7 +39,7 @@ fn progress(from: f64, s: f64, time: f64) -> f64 {
 /// `lower = a_st - a_0^-` over `span`: four times their rounding bound (the
 /// root finder's own floor).
 pub(super) fn band_tolerance(upper: &ExpTrig, lower: &ExpTrig, span: f64) -> f64 {
-    4.0 * upper.eval_error_bound(span)[0].max(lower.eval_error_bound(span)[0])
+    4.0 * upper.larger_rounding_level(lower, span)
 }
 
 /// How a stick phase ends.
@@ -184,10 +184,7 @@ impl ModeFunctions {
         v: f64,
         [lo, hi]: [f64; 2],
     ) -> [ExpTrig; 2] {
-        [
-            self.band_function(tau, x, v, hi),
-            self.band_function(tau, x, v, lo),
-        ]
+        self.band_functions(tau, x, v, [hi, lo])
     }
 
     /// The zeros of the rod's acceleration in `(0, span)` after `tau`

@@ -379,6 +379,26 @@ impl ExpTrig {
         [e0, e1, e2]
     }
 
+    /// The larger of the rounding levels `η0` on `[0, s_max]`
+    /// ([`ExpTrig::eval_error_bound`]) of `self` and `other`. Where they
+    /// differ only in the quadratic (two levels of one function), the parts
+    /// they share are computed once.
+    pub(crate) fn larger_rounding_level(&self, other: &ExpTrig, s_max: f64) -> f64 {
+        let shared = self.w == other.w
+            && self.phi == other.phi
+            && self.a == other.a
+            && self.b == other.b
+            && self.osc == other.osc;
+        if !shared {
+            return self.eval_error_bound(s_max)[0].max(other.eval_error_bound(s_max)[0]);
+        }
+        let m = self.harmonic_bounds();
+        let osc = self.osc.map(|o| o.rounding_and_bounds(s_max.abs()));
+        let mine = self.rounding_with(s_max, self.poly, &m, osc, |x| x)[0];
+        let theirs = self.rounding_with(s_max, other.poly, &m, osc, |x| x)[0];
+        mine.max(theirs)
+    }
+
     /// `Σ_k hypot(a_k, b_k) (k w)^j`, `j < 6`: bounds on `|T^(j)|`.
     pub(crate) fn harmonic_bounds(&self) -> [f64; 6] {
         self.harmonic_bounds_with(|x| x)
