@@ -129,6 +129,7 @@
 
 mod driven;
 mod rod;
+mod spring;
 
 use super::contact::{Contact, transition};
 use super::{
@@ -139,7 +140,9 @@ use crate::actuator::DrivenRod;
 use crate::error::SimulationError;
 use crate::motor::Motor;
 use crate::signal::{RodState, Signal};
+use crate::spring::Spring;
 use driven::Driven;
+use spring::SpringStep;
 
 /// Settings of the fixed-step reference.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -184,6 +187,12 @@ pub struct FixedStepEngine<'s> {
     /// The driven rod and the state it carries from period to period
     /// (`driven.rs`); `None` for a prescribed rod.
     driven: Option<Box<Driven>>,
+    /// The spring against the slider (`spring.rs`), if any.
+    spring: Option<SpringStep>,
+    /// The slider's absolute position at the end of the last period (m).
+    slider_x: f64,
+    /// `m_s` (kg), for a spring's force.
+    slider_mass: f64,
 }
 
 /// Mutable state of the walk through one period.
@@ -193,6 +202,19 @@ struct Walk {
     tau: f64,
     /// Slider position relative to the period start (m).
     x: f64,
+    /// The slider's absolute position at the period start (m).
+    origin: f64,
+    /// A spring's free end is in contact at the current node.
+    contact: bool,
+    /// `[d x_S, d v_S]` with respect to the slider's velocity at the
+    /// period start, for an engine with a spring (`spring.rs`).
+    tangent: [f64; 2],
+    /// The rod's (stuck slider's) velocity increment over the last step,
+    /// for the stick segments' cuts at its extrema.
+    last_dv: f64,
+    /// The acceleration of the open segment when it is one slip step under
+    /// a spring's load (its own, not the mode's).
+    step_accel: Option<f64>,
     /// Slider velocity (m/s).
     v: f64,
     mode: Mode,
@@ -203,6 +225,29 @@ struct Walk {
     /// The open segment: its start phase and the slider there.
     segment_start: f64,
     segment_slider: Kinematics,
+}
+
+impl Walk {
+    /// A walk through `period` from the slider at absolute position
+    /// `origin` with velocity `v`, in stick until the caller decides.
+    fn new(period: u64, origin: f64, v: f64, spring: Option<&SpringStep>) -> Self {
+        Walk {
+            period,
+            tau: 0.0,
+            x: 0.0,
+            origin,
+            contact: spring.is_some_and(|s| s.in_contact(origin)),
+            tangent: [0.0, 1.0],
+            last_dv: 0.0,
+            step_accel: None,
+            v,
+            mode: Mode::Stick,
+            derivative: 1.0,
+            uncertainty: 0.0,
+            segment_start: 0.0,
+            segment_slider: Kinematics { x: 0.0, v },
+        }
+    }
 }
 
 impl<'s> FixedStepEngine<'s> {
@@ -233,7 +278,28 @@ impl<'s> FixedStepEngine<'s> {
             last_uncertainty: 0.0,
             counters: WorkCounters::default(),
             driven: None,
+            spring: None,
+            slider_x: 0.0,
+            slider_mass: motor.params().slider_mass,
         }
+    }
+
+    /// Puts `spring` against the slider (`spring.rs`, docs/model.md
+    /// section 17), for a prescribed or a driven rod. The engine then
+    /// carries the slider's absolute position from period to period
+    /// ([`PeriodEngine::carries_rod_state`]); period 1 without a mode
+    /// starts it at `x_S = 0`. `spring` is expected to be valid
+    /// ([`Spring::validate`]).
+    pub fn with_spring(mut self, spring: Spring) -> Self {
+        self.spring = Some(SpringStep::new(spring, self.slider_mass));
+        self
+    }
+
+    /// The slider's absolute position at the end of the last period run
+    /// (m), counted from the start of the last run from rest (period 1
+    /// without a mode); 0 before the first.
+    pub fn slider_position(&self) -> f64 {
+        self.slider_x
     }
 
     /// Prepares the engine for a rod driven by a voltage (`driven.rs`,
@@ -303,6 +369,18 @@ impl<'s> FixedStepEngine<'s> {
     fn mode_for(&self, v_rel: f64, tau: f64) -> Mode {
         self.contact
             .mode(v_rel, || self.contact.band(self.signal.state(tau).a))
+    }
+
+    /// [`Self::mode_for`] for the slider of `walk`: with a spring, the
+    /// band at rest is shifted by `F_spring / m_s` (`spring.rs`).
+    fn mode_of(&self, walk: &Walk, v_rel: f64) -> Mode {
+        match self.spring {
+            None => self.mode_for(v_rel, walk.tau),
+            Some(spring) => self.contact.mode(v_rel, || {
+                let shift = spring.accel(walk.origin + walk.x, walk.v);
+                self.contact.band(self.signal.state(walk.tau).a + shift)
+            }),
+        }
     }
 
     /// One step of the scheme (module doc): the mode on the step and the
@@ -395,12 +473,7 @@ impl<'s> FixedStepEngine<'s> {
     /// Hands the open segment `[segment_start, tau]` to the observer and
     /// opens the next one at `tau`.
     fn close_segment<O: Observer>(&self, walk: &mut Walk, observer: &mut O) {
-        self.close_segment_with(walk, observer, |w| {
-            [
-                self.signal.state(w.segment_start),
-                self.signal.state_before(w.tau),
-            ]
-        });
+        self.close_segment_with(walk, observer, |w| self.rod_ends(w));
     }
 
     /// [`Self::close_segment`] with the rod at the segment's start and end
@@ -417,15 +490,19 @@ impl<'s> FixedStepEngine<'s> {
                 x: walk.x,
                 v: walk.v,
             };
-            let segment = self.contact.segment(
+            let mut segment = self.contact.segment(
                 walk.period,
                 [walk.segment_start, walk.tau],
                 walk.mode,
                 [walk.segment_slider, slider_end],
                 [rod_start, rod_end],
             );
+            if let Some(a) = walk.step_accel {
+                segment.slip_acceleration = a;
+            }
             observer.segment(&segment, self.signal);
         }
+        walk.step_accel = None;
         walk.segment_start = walk.tau;
         walk.segment_slider = Kinematics {
             x: walk.x,
@@ -438,11 +515,12 @@ impl<'s> FixedStepEngine<'s> {
     fn jump<O: Observer>(&mut self, walk: &mut Walk, before: RodState, observer: &mut O) {
         self.close_segment(walk, observer);
         let after = self.signal.state(walk.tau);
-        let mode = self.mode_for(after.v - walk.v, walk.tau);
+        let mode = self.mode_of(walk, after.v - walk.v);
         if mode == Mode::Stick {
             walk.v = after.v;
             walk.segment_slider.v = after.v;
             walk.derivative = 0.0;
+            walk.tangent[1] = 0.0;
         }
         walk.mode = mode;
         let kind = EventKind::Jump {
@@ -451,6 +529,16 @@ impl<'s> FixedStepEngine<'s> {
             then: mode,
         };
         self.emit(walk, kind, observer);
+    }
+
+    /// The slider's absolute position at the start of `period` from
+    /// `start`: 0 for period 1 without a mode (from rest), else where the
+    /// last period ended.
+    fn origin(&mut self, period: u64, start: &PeriodStart) -> f64 {
+        if period == 1 && start.mode.is_none() {
+            self.slider_x = 0.0;
+        }
+        self.slider_x
     }
 
     fn run_period_impl<O: Observer>(
@@ -466,30 +554,19 @@ impl<'s> FixedStepEngine<'s> {
         } else {
             self.jump_at_start
         };
-        let mut walk = Walk {
-            period,
-            tau: 0.0,
-            x: 0.0,
-            v: start.velocity,
-            mode: Mode::Stick,
-            derivative: 1.0,
-            uncertainty: 0.0,
-            segment_start: 0.0,
-            segment_slider: Kinematics {
-                x: 0.0,
-                v: start.velocity,
-            },
-        };
+        let origin = self.origin(period, &start);
+        let mut walk = Walk::new(period, origin, start.velocity, self.spring.as_ref());
         // The mode at 0+: the previous period's if it simply continues,
         // else from v_rel (rest within tol_v: from the band of a_R(0+)).
         let mode = match start.mode {
             Some(m) if !jumps => m,
-            _ => self.mode_for(rod0.v - walk.v, 0.0),
+            _ => self.mode_of(&walk, rod0.v - walk.v),
         };
         if mode == Mode::Stick {
             walk.v = rod0.v;
             walk.segment_slider.v = rod0.v;
             walk.derivative = 0.0;
+            walk.tangent[1] = 0.0;
         }
         walk.mode = mode;
         if jumps {
@@ -509,6 +586,7 @@ impl<'s> FixedStepEngine<'s> {
         let snap = 1e-6 * self.h;
         let mut k = 0u64;
         let mut steps = 0u64;
+        let mut v_rod = rod0.v;
         while k < self.steps {
             let mut next = self.node(k + 1);
             let mut advance = true;
@@ -526,11 +604,20 @@ impl<'s> FixedStepEngine<'s> {
             }
             let h = next - walk.tau;
             let v_rod_end = self.signal.velocity_before(next);
-            let (new_mode, v1) = self.step_law(walk.mode, walk.v, v_rod_end, h);
+            let load = self
+                .spring
+                .as_ref()
+                .and_then(|s| s.load(walk.origin + walk.x, walk.v, h));
+            let (new_mode, v1, a_req) = match &load {
+                None => {
+                    let (m, v1) = self.step_law(walk.mode, walk.v, v_rod_end, h);
+                    (m, v1, (v_rod_end - walk.v) / h)
+                }
+                Some(load) => self.spring_step_law(walk.mode, walk.v, v_rod_end, h, load),
+            };
             steps += 1;
             if new_mode != walk.mode {
-                walk.uncertainty +=
-                    h * self.acceleration_jump(walk.mode, new_mode, (v_rod_end - walk.v) / h);
+                walk.uncertainty += h * self.acceleration_jump(walk.mode, new_mode, a_req);
                 if new_mode == Mode::Stick {
                     walk.derivative = 0.0;
                 }
@@ -543,12 +630,35 @@ impl<'s> FixedStepEngine<'s> {
                     self.emit(&walk, kind, observer);
                 }
             }
+            if self.spring.is_some() {
+                self.spring_cuts(&mut walk, load.is_some(), v_rod_end - v_rod, observer, |w| {
+                    self.rod_ends(w)
+                });
+                walk.tangent = match &load {
+                    None => spring::free_tangent(new_mode, walk.tangent, 0.0, h),
+                    Some(load) => load.tangent(new_mode, walk.tangent, 0.0, h),
+                };
+            }
+            let v0 = walk.v;
             walk.x += 0.5 * h * (walk.v + v1);
             walk.v = v1;
             walk.tau = next;
+            v_rod = v_rod_end;
+            if self.spring.is_some() {
+                if load.is_some() && matches!(new_mode, Mode::Slip(_)) {
+                    walk.step_accel = Some((v1 - v0) / h);
+                }
+                if let Some(kind) = self.contact_change(&mut walk, observer, |w| self.rod_ends(w)) {
+                    self.emit(&walk, kind, observer);
+                }
+                if walk.step_accel.is_some() {
+                    self.close_segment(&mut walk, observer);
+                }
+            }
             if at_jump {
                 let before = self.signal.state_before(next);
                 self.jump(&mut walk, before, observer);
+                v_rod = self.signal.state(next).v;
             }
             if advance {
                 k += 1;
@@ -559,15 +669,28 @@ impl<'s> FixedStepEngine<'s> {
         self.counters.evaluations += steps;
         self.counters.periods += 1;
         self.last_uncertainty = walk.uncertainty;
+        self.slider_x = walk.origin + walk.x;
         let end = PeriodEnd {
             period,
             step: walk.x,
             velocity: walk.v,
             mode: walk.mode,
-            map_derivative: walk.derivative,
+            map_derivative: if self.spring.is_some() {
+                walk.tangent[1]
+            } else {
+                walk.derivative
+            },
         };
         observer.period_end(&end);
         Ok(end)
+    }
+
+    /// The signal at the open segment's ends.
+    fn rod_ends(&self, w: &Walk) -> [RodState; 2] {
+        [
+            self.signal.state(w.segment_start),
+            self.signal.state_before(w.tau),
+        ]
     }
 }
 
@@ -605,9 +728,10 @@ impl PeriodEngine for FixedStepEngine<'_> {
         true
     }
 
-    /// True for a driven rod ([`FixedStepEngine::driven`]).
+    /// True for a driven rod ([`FixedStepEngine::driven`]) and with a
+    /// spring ([`FixedStepEngine::with_spring`]: the slider's position).
     fn carries_rod_state(&self) -> bool {
-        self.driven.is_some()
+        self.driven.is_some() || self.spring.is_some()
     }
 
     /// A driven rod's figures over the last period run with an observer of
