@@ -1,0 +1,272 @@
+//! The fixed-step reference with a spring against the slider
+//! (`engine::fixed_step`, `spring.rs`; docs/model.md section 17), against
+//! closed forms and against itself:
+//!
+//! * with the rod at rest and an undamped tied spring, the slider is the
+//!   Coulomb-damped oscillator: its turning points are
+//!   [`coulomb_turning_points`] (each half swing loses `2 mu_d F_c / k`);
+//! * a free end the slider never reaches changes nothing, bit for bit;
+//! * a tied spring of tiny stiffness perturbs the slider's velocity by
+//!   `-(k / m_s) integral x_S dt` over its slip since the last stick;
+//! * a free end the slider never leaves is the tied spring of the same
+//!   force;
+//! * a slider that never slips on a driven rod with reaction rides with it
+//!   as one body of mass `M + m_s` on stiffness `c + k`.
+
+use stickslip::Scene;
+use stickslip::actuator::{DrivenRod, DrivenSpec, RealActuator, Voltage};
+use stickslip::engine::{
+    Event, EventKind, FixedStepEngine, FixedStepOptions, Kinematics, Mode, Observer, PeriodEnd,
+    PeriodEngine, PeriodStart, Segment,
+};
+use stickslip::motor::{Motor, MotorParams};
+use stickslip::power::ActuatorParams;
+use stickslip::signal::{FourierSignal, Signal};
+use stickslip::spring::{Spring, SpringEnd, coulomb_turning_points};
+
+/// Every segment and event of a run.
+#[derive(Default)]
+struct Recorder {
+    segments: Vec<Segment>,
+    events: Vec<Event>,
+}
+
+impl Observer for Recorder {
+    fn segment(&mut self, segment: &Segment, _signal: &Signal) {
+        self.segments.push(*segment);
+    }
+    fn event(&mut self, event: &Event) {
+        self.events.push(*event);
+    }
+}
+
+/// A run of `periods` periods from rest: the period ends, the slider's
+/// absolute position at each period start, and what was recorded.
+struct Run {
+    ends: Vec<PeriodEnd>,
+    origins: Vec<f64>,
+    recorded: Recorder,
+}
+
+fn run(engine: &mut FixedStepEngine, periods: u64) -> Run {
+    let mut recorded = Recorder::default();
+    let mut start = PeriodStart {
+        velocity: 0.0,
+        mode: None,
+    };
+    let (mut ends, mut origins) = (Vec::new(), Vec::new());
+    for p in 1..=periods {
+        origins.push(if p == 1 {
+            0.0
+        } else {
+            engine.slider_position()
+        });
+        let end = engine
+            .run_period(p, start, &mut recorded)
+            .expect("the period runs");
+        start = PeriodStart {
+            velocity: end.velocity,
+            mode: Some(end.mode),
+        };
+        ends.push(end);
+    }
+    Run {
+        ends,
+        origins,
+        recorded,
+    }
+}
+
+fn options(steps: u32) -> FixedStepOptions {
+    FixedStepOptions {
+        steps_per_harmonic: steps,
+        ..FixedStepOptions::default()
+    }
+}
+
+fn tied(stiffness: f64, damping: f64, preload: f64) -> Spring {
+    let spring = Spring {
+        stiffness,
+        damping,
+        end: SpringEnd::Tied { preload },
+    };
+    spring.validate().expect("a valid spring");
+    spring
+}
+
+fn free(stiffness: f64, gap: f64) -> Spring {
+    let spring = Spring {
+        stiffness,
+        damping: 0.0,
+        end: SpringEnd::Free { gap },
+    };
+    spring.validate().expect("a valid spring");
+    spring
+}
+
+/// The paper's default signal and motor.
+fn default_scene() -> (Signal, Motor) {
+    let built = Scene::default().build().expect("the default scene builds");
+    (built.signal, built.motor)
+}
+
+/// Least-squares slope of `log2 e` against `-log2 h` over step counts
+/// doubling from one error to the next: the convergence order.
+fn order(errors: &[f64]) -> f64 {
+    let n = errors.len() as f64;
+    let xs: Vec<f64> = (0..errors.len()).map(|i| i as f64).collect();
+    let ys: Vec<f64> = errors.iter().map(|e| -e.log2()).collect();
+    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
+    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
+    sxy / sxx
+}
+
+/// The slider's turning points (absolute positions) from a run's
+/// segments: where a slip segment's velocity changes sign, the extremum of
+/// its constant-acceleration motion `x_0 - v_0^2 / (2 a)`, and every
+/// stick phase's position (the slider at rest on the resting rod: the end
+/// of its first segment); the release point first.
+fn turning_points(run: &Run) -> Vec<f64> {
+    let mut points = vec![0.0];
+    let mut stuck = false;
+    for s in &run.recorded.segments {
+        let origin = run.origins[(s.period - 1) as usize];
+        match s.mode {
+            Mode::Stick => {
+                // The first step of a stick segment may be the one in which
+                // the slider came to rest: its end is the rest position.
+                if !stuck {
+                    points.push(origin + s.slider_end.x);
+                }
+                stuck = true;
+            }
+            Mode::Slip(_) => {
+                stuck = false;
+                let (v0, v1) = (s.slider_start.v, s.slider_end.v);
+                if v0 * v1 < 0.0 {
+                    points.push(origin + s.slider_start.x - v0 * v0 / (2.0 * s.slip_acceleration));
+                }
+            }
+        }
+    }
+    points
+}
+
+/// With the rod at rest (a series of zero coefficients) and an undamped
+/// tied spring whose rest position is `x0` from the slider's start
+/// (`F_p = -k x0`), the slider swings as the Coulomb-damped oscillator:
+/// its turning points relative to the spring's rest are those of
+/// `coulomb_turning_points(-x0, ..)` (the closed form of spring.rs: each
+/// half swing loses `2 mu_d F_c / k`), it comes to rest inside
+/// `|k x| <= mu_0 F_c` and stays there. The scheme's error in the turning
+/// points falls at second order: in slip the step is the trapezoidal rule
+/// for the linear oscillator (energy kept exactly without damping), and
+/// the first-order velocity error after a step holding an event sits
+/// where the slider is slow, costing the swing `O(h^2)` of its energy.
+#[test]
+fn coulomb_turning_points_with_the_rod_at_rest_at_second_order() {
+    let motor = Motor::new(MotorParams::default()).expect("the default motor");
+    let (m, f_c) = (motor.params().slider_mass, motor.contact_force());
+    let (f_d, f_0) = (motor.mu_d() * f_c, motor.params().mu_static * f_c);
+    // k = 1 kN/m: natural period 2 pi sqrt(m_s / k) = 7.4 ms; the rest
+    // 1.01 mm away, about 3.2 friction lengths 2 f_d / k = 0.31 mm: three
+    // half swings, the slider stopping 0.07 mm from the spring's rest.
+    let (k, x0) = (1e3, 1.01e-3);
+    let expected: Vec<f64> = coulomb_turning_points(-x0, k, f_d, f_0)
+        .iter()
+        .map(|y| y + x0)
+        .collect();
+    let last = expected.last().unwrap() - x0;
+    // The slider stops clear of the band's edge and of the swing
+    // threshold, so that a grid error cannot change the count.
+    assert!((k * last).abs() < 0.8 * f_0, "{expected:?}");
+    assert!(expected.len() >= 4, "{expected:?}");
+    let signal = Signal::Fourier(FourierSignal::from_coefficients(
+        1e-3,
+        0.0,
+        vec![0.0],
+        vec![0.0],
+    ));
+    let spring = tied(k, 0.0, -k * x0);
+    let periods = 40;
+    let half_swing = std::f64::consts::PI * (m / k).sqrt();
+    let mut errors = Vec::new();
+    for steps in [100, 200, 400, 800, 1600] {
+        let mut engine = FixedStepEngine::new(&signal, &motor, options(steps)).with_spring(spring);
+        assert!(engine.carries_rod_state());
+        let r = run(&mut engine, periods);
+        let points = turning_points(&r);
+        assert_eq!(points.len(), expected.len(), "{points:?} {expected:?}");
+        let error = points
+            .iter()
+            .zip(&expected)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        // O(h): within the distance the fastest swing covers in a step.
+        let h = engine.step();
+        let v_max = (k / m).sqrt() * x0;
+        assert!(error < v_max * h, "{steps}: error {error:e}, v h {:e}", v_max * h);
+        // At rest on the last turning point to the end (the run spans
+        // many more half swings than it has).
+        assert!(r.ends.len() as f64 * 1e-3 > 2.0 * half_swing * expected.len() as f64);
+        let rest = engine.slider_position();
+        assert_eq!(r.ends.last().unwrap().mode, Mode::Stick);
+        assert!((rest - points.last().unwrap()).abs() <= 1e-15, "{rest} {points:?}");
+        errors.push(error);
+    }
+    let p = order(&errors);
+    eprintln!("turning point errors {errors:?}, order {p}");
+    assert!((1.8..2.3).contains(&p), "errors {errors:?}, order {p}");
+}
+
+/// Consecutive stick segments merged into one: an engine with a spring
+/// cuts its stick segments at the slider's velocity extrema, the
+/// spring-free engine does not.
+fn merge_sticks(segments: &[Segment]) -> Vec<Segment> {
+    let mut merged: Vec<Segment> = Vec::new();
+    for s in segments {
+        match merged.last_mut() {
+            Some(last)
+                if last.mode == Mode::Stick
+                    && s.mode == Mode::Stick
+                    && last.period == s.period
+                    && last.end == s.start =>
+            {
+                last.end = s.end;
+                last.slider_end = s.slider_end;
+                last.rod_end = s.rod_end;
+            }
+            _ => merged.push(*s),
+        }
+    }
+    merged
+}
+
+/// A free end farther than the slider travels (1 m, against a few tens
+/// micrometres in the run) never acts: the run is the spring-free
+/// engine's bit for bit, period ends, events and segments (the stick
+/// segments merged where the spring's engine cuts them at velocity
+/// extrema), and no contact event happens. The slider's absolute position
+/// is the sum of the steps.
+#[test]
+fn a_free_end_out_of_reach_changes_nothing() {
+    let (signal, motor) = default_scene();
+    let periods = 12;
+    let mut plain = FixedStepEngine::new(&signal, &motor, options(500));
+    let mut sprung = FixedStepEngine::new(&signal, &motor, options(500)).with_spring(free(1e4, 1.0));
+    assert!(!plain.carries_rod_state() && sprung.carries_rod_state());
+    let a = run(&mut plain, periods);
+    let b = run(&mut sprung, periods);
+    assert_eq!(a.ends, b.ends);
+    assert_eq!(a.recorded.events, b.recorded.events);
+    assert!(b.recorded.events.iter().all(|e| !e.kind.is_contact()));
+    // The run had stick and slip and moved the slider.
+    assert!(a.recorded.events.len() > 10, "{} events", a.recorded.events.len());
+    assert_eq!(merge_sticks(&a.recorded.segments), merge_sticks(&b.recorded.segments));
+    assert!(b.recorded.segments.len() >= a.recorded.segments.len());
+    let travelled: f64 = b.ends.iter().map(|e| e.step).sum();
+    assert!(travelled > 1e-5 && travelled < 1e-3, "{travelled}");
+    assert!((sprung.slider_position() - travelled).abs() <= 1e-15 * periods as f64);
+    assert_eq!(plain.slider_position(), sprung.slider_position());
+}
