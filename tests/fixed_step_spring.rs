@@ -243,7 +243,7 @@ fn merge_sticks(segments: &[Segment]) -> Vec<Segment> {
     merged
 }
 
-/// A free end farther than the slider travels (1 m, against a few tens
+/// A free end farther than the slider travels (1 m, against some 20
 /// micrometres in the run) never acts: the run is the spring-free
 /// engine's bit for bit, period ends, events and segments (the stick
 /// segments merged where the spring's engine cuts them at velocity
@@ -269,4 +269,62 @@ fn a_free_end_out_of_reach_changes_nothing() {
     assert!(travelled > 1e-5 && travelled < 1e-3, "{travelled}");
     assert!((sprung.slider_position() - travelled).abs() <= 1e-15 * periods as f64);
     assert_eq!(plain.slider_position(), sprung.slider_position());
+}
+
+/// A tied spring of zero preload and tiny stiffness (`k = 1e-6 N/m`)
+/// perturbs the slider by `k x_S / m_s`: with the same events (the
+/// perturbation moves none across a node), a stuck slider is on the rod
+/// (no change) and a slipping one has lost `(k / m_s) integral x_S dt`
+/// since it last stuck, the integral taken over the spring-free run's own
+/// constant-acceleration segments (`dt (x_0 + x_1) / 2 - a dt^3 / 12`
+/// each). The change is first order in `k` (the second-order terms are
+/// some `1e-10` of it); the velocities' rounding (`eps |v|` a step, over
+/// thousands of steps) leaves agreement to `2e-3` of a change that is
+/// itself `1e4 eps |v|` or more.
+#[test]
+fn a_tiny_tied_spring_perturbs_the_velocity_by_its_impulse() {
+    let (signal, motor) = default_scene();
+    let m = motor.params().slider_mass;
+    let k = 1e-6;
+    let periods = 12;
+    let mut plain = FixedStepEngine::new(&signal, &motor, options(500));
+    let mut sprung =
+        FixedStepEngine::new(&signal, &motor, options(500)).with_spring(tied(k, 0.0, 0.0));
+    let a = run(&mut plain, periods);
+    let b = run(&mut sprung, periods);
+    assert_eq!(a.recorded.events, b.recorded.events);
+    // integral x_S dt since the slider last stuck, at every period end.
+    let mut integral = 0.0;
+    let mut expected = vec![0.0; periods as usize];
+    for s in &a.recorded.segments {
+        let origin = a.origins[(s.period - 1) as usize];
+        let dt = s.duration();
+        match s.mode {
+            Mode::Stick => integral = 0.0,
+            Mode::Slip(_) => {
+                let mean = origin + 0.5 * (s.slider_start.x + s.slider_end.x);
+                integral += dt * mean - s.slip_acceleration * dt.powi(3) / 12.0;
+            }
+        }
+        if s.end == signal.period() {
+            expected[(s.period - 1) as usize] = -k / m * integral;
+        }
+    }
+    let mut slipping = 0;
+    for ((pa, pb), dv) in a.ends.iter().zip(&b.ends).zip(&expected) {
+        let change = pb.velocity - pa.velocity;
+        if pa.mode == Mode::Stick {
+            assert_eq!(change, 0.0, "period {}", pa.period);
+            continue;
+        }
+        slipping += 1;
+        // The change is far above a single rounding of the velocity.
+        assert!(dv.abs() > 1e4 * f64::EPSILON * pa.velocity.abs(), "{dv:e}");
+        assert!(
+            (change - dv).abs() <= 2e-3 * dv.abs(),
+            "period {}: change {change:e}, expected {dv:e}",
+            pa.period
+        );
+    }
+    assert!(slipping > periods / 2, "{slipping} periods end in slip");
 }
