@@ -217,7 +217,10 @@ impl FixedStepEngine<'_> {
             _ => Carry {
                 rod: Kinematics::default(),
                 slider: 0.0,
-                mode: self.contact.band(driven.at_rest_with(self.spring.as_ref())).mode_at_rest(),
+                mode: self
+                    .contact
+                    .band(driven.at_rest_with(self.spring.as_ref()))
+                    .mode_at_rest(),
             },
         };
         let mut walk = Walk::new(period, origin, carry.slider, self.spring.as_ref());

@@ -631,9 +631,13 @@ impl<'s> FixedStepEngine<'s> {
                 }
             }
             if self.spring.is_some() {
-                self.spring_cuts(&mut walk, load.is_some(), v_rod_end - v_rod, observer, |w| {
-                    self.rod_ends(w)
-                });
+                self.spring_cuts(
+                    &mut walk,
+                    load.is_some(),
+                    v_rod_end - v_rod,
+                    observer,
+                    |w| self.rod_ends(w),
+                );
                 walk.tangent = match &load {
                     None => spring::free_tangent(new_mode, walk.tangent, 0.0, h),
                     Some(load) => load.tangent(new_mode, walk.tangent, 0.0, h),
