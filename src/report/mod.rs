@@ -20,12 +20,14 @@ use crate::scene::SceneFile;
 use crate::sensitivity::{Derivative, Sensitivities};
 
 mod driven;
+mod spring;
 
 use crate::signal::Held;
 use crate::simulation::{CertificateKind, Outcome, RunReport, RunTimes, Unsettled};
 use driven::drive_figures;
 pub(crate) use driven::{actuator_sensitivities_text, add_actuator_sensitivities_json};
 use serde_json::{Map, Value, json};
+use spring::spring_figures;
 use std::fmt::Write as _;
 
 /// `value` rounded to the digits its absolute error `err` supports (15
@@ -234,6 +236,12 @@ fn steady_json(m: &mut Map<String, Value>, r: &RunReport) {
         for (key, value) in drive_figures(d) {
             m.insert(key.into(), number(value));
         }
+    }
+    if let Some(s) = &r.spring {
+        for (key, value, _) in spring_figures(s) {
+            m.insert(key.into(), number(value));
+        }
+        m.insert("orbit_periods".into(), json!(s.orbit_periods));
     }
     if let Some(check) = &r.steady_state_check {
         // The cross-check of run.verify_steady_state: the start-up's own
@@ -504,6 +512,16 @@ fn steady_text(r: &RunReport) -> String {
                 "voltage_peak" | "voltage_rms" => "V",
                 _ => "A",
             };
+            line(&mut out, key, format_with_error(value, None), unit);
+        }
+    }
+    if let Some(s) = &r.spring {
+        let _ = writeln!(
+            out,
+            "spring (steady orbit of {}; v_inf and what assumes travel do not apply):",
+            crate::plural::count(s.orbit_periods, "period", "periods")
+        );
+        for (key, value, unit) in spring_figures(s) {
             line(&mut out, key, format_with_error(value, None), unit);
         }
     }

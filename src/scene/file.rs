@@ -204,12 +204,7 @@ impl TryFrom<SceneFile> for Scene {
         };
         let run = run_settings(file.run)?;
         let spring = spring_of(file.spring)?;
-        let outputs = outputs(
-            file.outputs,
-            &signal,
-            actuator.as_ref(),
-            spring.is_some(),
-        )?;
+        let outputs = outputs(file.outputs, &signal, actuator.as_ref(), spring.is_some())?;
         let scene = Scene {
             motor,
             signal,

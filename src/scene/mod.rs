@@ -547,8 +547,7 @@ impl Scene {
                 &self.signal,
                 self.actuator.as_ref(),
                 self.spring.is_some(),
-            )
-            {
+            ) {
                 return Err(ParamError::Inconsistent {
                     field: "outputs.indicators".to_owned(),
                     reason: reason.to_owned(),

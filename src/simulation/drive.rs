@@ -5,7 +5,8 @@
 use super::certified::{Search, bracketed_v_inf, certified_limit, covering_search};
 use super::driven::Settle;
 use super::{
-    CertificateKind, Outcome, RunReport, SteadyStateCertificate, SteadyStateCheck, Unsettled,
+    CertificateKind, Outcome, RunReport, SpringReading, SteadyStateCertificate, SteadyStateCheck,
+    Unsettled,
 };
 use crate::actuator::DrivenRod;
 use crate::analysis::certificate::CERTIFIED_REACH;
@@ -232,8 +233,11 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                 options.ratio_rule = ratio_rule;
                 event_log = scene.outputs.events.then(EventLog::default);
                 trajectory = scene.outputs.trajectory.then(Trajectory::default);
-                let mut settle =
-                    rod.map(|rod| Settle::new(rod, motor, &signal, !verify, needs_startup));
+                // Newton on the period map where the engine can start a
+                // period from any boundary state: a driven rod, or a slider
+                // on a spring.
+                let mut settle = (rod.is_some() || scene.spring.is_some())
+                    .then(|| Settle::new(rod, motor, &signal, !verify, needs_startup));
                 let transient = match settle.as_mut() {
                     Some(settle) => analysis::transient_until(
                         &mut engine,
@@ -395,6 +399,36 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
     } else {
         None
     };
+    // A spring against the slider: the orbit's periods recorded, what the
+    // spring reads over them.
+    let spring = if rod_state && engine.boundary_state().is_some_and(|z| z.slider.is_some()) {
+        let periods = transient
+            .as_ref()
+            .map_or(1, |t| orbit_periods(t, signal.velocity_scale()));
+        let start = engine.boundary_state().expect("a state");
+        let mut segments = Trajectory::default();
+        let mut events = EventLog::default();
+        let mut from = PeriodStart {
+            velocity: start.slider_v,
+            mode: Some(start.mode),
+        };
+        for _ in 0..periods {
+            let end = engine.run_period(2, from, &mut (&mut segments, &mut events))?;
+            from = PeriodStart {
+                velocity: end.velocity,
+                mode: Some(end.mode),
+            };
+            map_evaluations += 1;
+        }
+        engine
+            .spring_profile(&start, (&segments.segments, &events.events), periods)
+            .map(|profile| SpringReading {
+                orbit_periods: periods,
+                profile,
+            })
+    } else {
+        None
+    };
     let (drive, driven_period) = match drive {
         Some((profile, segments)) => (Some(profile), Some(segments)),
         None => (None, None),
@@ -476,7 +510,26 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         steady,
         drive,
         driven_period,
+        spring,
     })))
+}
+
+/// The period of the orbit a start-up locked into, in drive periods: the
+/// least `k` dividing its cycle of repeating boundary states for which the
+/// boundary velocities `k` periods apart agree within `1e-9` of the
+/// velocity scale over the cycle (a cycle of a few doubles, which rounding
+/// makes of a period-1 orbit, is period 1).
+fn orbit_periods(transient: &Transient, scale: f64) -> u64 {
+    let b = &transient.boundary_velocities;
+    let cycle = (transient.cycle.max(1) as usize).min(b.len() / 2).max(1);
+    let n = b.len();
+    (1..=cycle)
+        .find(|k| {
+            cycle % k == 0
+                && (0..cycle)
+                    .all(|i| n > i + k && (b[n - 1 - i] - b[n - 1 - i - k]).abs() <= 1e-9 * scale)
+        })
+        .unwrap_or(cycle) as u64
 }
 
 /// The contraction per period the start-up showed near its limit: the

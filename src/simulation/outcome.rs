@@ -48,6 +48,16 @@ impl SteadyStateCheck {
     }
 }
 
+/// What a spring against the slider reads over the steady orbit
+/// (docs/model.md section 17).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpringReading {
+    /// The orbit's period in drive periods (1, or `k` for a subharmonic).
+    pub orbit_periods: u64,
+    /// The spring's force and the slider's position over it.
+    pub profile: crate::engine::SpringProfile,
+}
+
 /// How a steady state was established as the limit of the motion from
 /// rest (docs/model.md section 3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -151,6 +161,9 @@ pub struct RunReport {
     /// A driven rod's steady period, segment by segment (the one
     /// [`RunReport::drive`] describes); `None` for a prescribed rod.
     pub driven_period: Option<Vec<Segment>>,
+    /// What a spring against the slider reads over the steady orbit
+    /// (docs/model.md section 17); `None` without a spring.
+    pub spring: Option<SpringReading>,
 }
 
 /// The mode of operation in steady state (Part I of the paper): whether the

@@ -56,7 +56,10 @@ pub(super) fn profile<'a>(
 ) -> SpringProfile {
     let spring = law.spring;
     let rule = GaussLegendre::new(POINTS);
-    let SliderState { x: x_first, contact } = start.slider.unwrap_or(SliderState {
+    let SliderState {
+        x: x_first,
+        contact,
+    } = start.slider.unwrap_or(SliderState {
         x: 0.0,
         contact: true,
     });
