@@ -525,7 +525,7 @@ fn orbit_periods(transient: &Transient, scale: f64) -> u64 {
     let n = b.len();
     (1..=cycle)
         .find(|k| {
-            cycle % k == 0
+            cycle.is_multiple_of(*k)
                 && (0..cycle)
                     .all(|i| n > i + k && (b[n - 1 - i] - b[n - 1 - i - k]).abs() <= 1e-9 * scale)
         })
