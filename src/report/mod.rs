@@ -577,8 +577,13 @@ fn steady_text(r: &RunReport) -> String {
         ),
         CertificateKind::Attracted => writeln!(
             out,
-            "limit from rest: the fixed point of the period map on (x_R, v_R, v_S) by Newton, \
-             the start-up followed into its attraction ({} periods)",
+            "limit from rest: the fixed point of the period map on {} by Newton, the start-up \
+             followed into its attraction ({} periods)",
+            if r.spring.is_some() {
+                "(x_S, v_S)"
+            } else {
+                "(x_R, v_R, v_S)"
+            },
             r.transient.as_ref().map_or(0, |t| t.periods())
         ),
     };
