@@ -37,7 +37,7 @@ pub struct SteadyState {
     /// velocity's error from the fixed point's residual and one period's
     /// errors in every component, carried through `(I - dP/dz)^(-1)`. It
     /// replaces the one-dimensional `/ (1 - P')` of the error estimate
-    /// ([`crate::analysis::error_estimate`]).
+    /// (`analysis/error_estimate.rs`).
     pub boundary_bound: Option<f64>,
 }
 
