@@ -27,7 +27,7 @@ use crate::simulation::{CertificateKind, Outcome, RunReport, RunTimes, Unsettled
 use driven::drive_figures;
 pub(crate) use driven::{actuator_sensitivities_text, add_actuator_sensitivities_json};
 use serde_json::{Map, Value, json};
-use spring::spring_figures;
+use spring::{add_spring_json, spring_text};
 use std::fmt::Write as _;
 
 /// `value` rounded to the digits its absolute error `err` supports (15
@@ -174,6 +174,9 @@ fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled, verify: bool) {
     m.insert("f0".into(), number(1.0 / u.period));
     m.insert("f_max".into(), option_number(u.f_max));
     m.insert("periods_simulated".into(), json!(u.periods_simulated));
+    if let Some(s) = &u.spring {
+        add_spring_json(m, s);
+    }
     m.insert(
         "steady_state_certificate".into(),
         match u.certificate_evaluations {
@@ -238,10 +241,7 @@ fn steady_json(m: &mut Map<String, Value>, r: &RunReport) {
         }
     }
     if let Some(s) = &r.spring {
-        for (key, value, _) in spring_figures(s) {
-            m.insert(key.into(), number(value));
-        }
-        m.insert("orbit_periods".into(), json!(s.orbit_periods));
+        add_spring_json(m, s);
     }
     if let Some(check) = &r.steady_state_check {
         // The cross-check of run.verify_steady_state: the start-up's own
@@ -440,6 +440,9 @@ fn unsettled_text(out: &mut String, state: &Unsettled, times: RunTimes) {
         );
     }
     let _ = writeln!(out, "indicators: none (no steady state)");
+    if let Some(s) = &state.spring {
+        spring_text(out, s);
+    }
     cost_line(
         out,
         state.work.periods,
@@ -516,14 +519,7 @@ fn steady_text(r: &RunReport) -> String {
         }
     }
     if let Some(s) = &r.spring {
-        let _ = writeln!(
-            out,
-            "spring (steady orbit of {}; v_inf and what assumes travel do not apply):",
-            crate::plural::count(s.orbit_periods, "period", "periods")
-        );
-        for (key, value, unit) in spring_figures(s) {
-            line(&mut out, key, format_with_error(value, None), unit);
-        }
+        spring_text(&mut out, s);
     }
     if let Some(check) = &r.steady_state_check {
         let tr = check

@@ -124,6 +124,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                             setup_time,
                             simulation_time: clock.elapsed(),
                             wall_time: setup_time + clock.elapsed(),
+                            spring: None,
                         };
                         let direction = if growing {
                             Direction::Forward
@@ -249,14 +250,25 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                     None => analysis::transient(&mut engine, &options, wanted, &mut event_log)?,
                 };
                 if transient.run_away.is_some() || !transient.converged {
-                    return Ok(unsettled(
+                    // A slider on a spring that did not lock: what the
+                    // spring reads over the periods that follow.
+                    let reading = if transient.run_away.is_none() && scene.spring.is_some() {
+                        unlocked_reading(&mut engine, transient.periods())?
+                    } else {
+                        None
+                    };
+                    let mut outcome = unsettled(
                         &engine,
                         &signal,
                         &requested,
                         &transient,
                         rest_fixed_point,
                         (setup_time, clock.elapsed()),
-                    ));
+                    );
+                    if let Outcome::NotConverged(state) = &mut outcome {
+                        state.spring = reading;
+                    }
+                    return Ok(outcome);
                 }
                 if let Some(settle) = &settle {
                     map_evaluations += settle.evaluations;
@@ -424,7 +436,10 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
             .spring_profile(&start, (&segments.segments, &events.events), periods)
             .map(|profile| SpringReading {
                 orbit_periods: periods,
+                periods,
                 profile,
+                mean_range: None,
+                searched: None,
             })
     } else {
         None
@@ -514,6 +529,63 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
     })))
 }
 
+/// Periods over which a spring that did not lock is read.
+const UNLOCKED_READING: u64 = 64;
+
+/// The spring's reading over the [`UNLOCKED_READING`] periods after a
+/// start-up of `simulated` periods that locked into no orbit of up to 64
+/// periods (the start-up's cycle test): their mean, and the least and
+/// largest mean of a single period.
+fn unlocked_reading<E: PeriodEngine>(
+    engine: &mut E,
+    simulated: u64,
+) -> Result<Option<SpringReading>, Error> {
+    let Some(start) = engine.boundary_state() else {
+        return Ok(None);
+    };
+    let mut from = PeriodStart {
+        velocity: start.slider_v,
+        mode: Some(start.mode),
+    };
+    let (mut segments, mut events) = (Trajectory::default(), EventLog::default());
+    let mut means = Vec::new();
+    let mut period_start = start;
+    for p in 0..UNLOCKED_READING {
+        let (mut one, mut one_events) = (Trajectory::default(), EventLog::default());
+        let end = engine.run_period(simulated + 1 + p, from, &mut (&mut one, &mut one_events))?;
+        if let Some(profile) =
+            engine.spring_profile(&period_start, (&one.segments, &one_events.events), 1)
+        {
+            means.push(profile.force_mean);
+        }
+        segments.segments.extend(one.segments);
+        events.events.extend(one_events.events);
+        period_start = engine.boundary_state().unwrap_or(period_start);
+        from = PeriodStart {
+            velocity: end.velocity,
+            mode: Some(end.mode),
+        };
+    }
+    let range = means
+        .iter()
+        .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], m| {
+            [lo.min(*m), hi.max(*m)]
+        });
+    Ok(engine
+        .spring_profile(
+            &start,
+            (&segments.segments, &events.events),
+            UNLOCKED_READING,
+        )
+        .map(|profile| SpringReading {
+            orbit_periods: 0,
+            periods: UNLOCKED_READING,
+            profile,
+            mean_range: Some(range),
+            searched: Some((64, simulated)),
+        }))
+}
+
 /// The period of the orbit a start-up locked into, in drive periods: the
 /// least `k` dividing its cycle of repeating boundary states for which the
 /// boundary velocities `k` periods apart agree within `1e-9` of the
@@ -590,6 +662,7 @@ fn unsettled<E: PeriodEngine>(
         setup_time,
         simulation_time,
         wall_time: setup_time + simulation_time,
+        spring: None,
     };
     match transient.run_away {
         Some(direction) => Outcome::RunAway { direction, state },
