@@ -195,14 +195,7 @@ impl SpringLaw {
             SliderMotion::Uniform { x0, v0, a } => ([x0 - gap, v0, 0.5 * a], None),
             SliderMotion::Oscillating { x_eq, y } => ([x_eq - gap, 0.0, 0.0], Some(y)),
         };
-        ExpTrig {
-            poly,
-            w,
-            phi: 0.0,
-            a: Vec::new(),
-            b: Vec::new(),
-            osc,
-        }
+        ExpTrig::local(poly, w, osc)
     }
 
     /// `x_S(s) - x_gap = x_R(tau + s) - x_R(tau) + x_S0 - x_gap` of a stick

@@ -214,13 +214,6 @@ impl SpringLaw {
                 )
             }
         };
-        ExpTrig {
-            poly,
-            w,
-            phi: 0.0,
-            a: Vec::new(),
-            b: Vec::new(),
-            osc,
-        }
+        ExpTrig::local(poly, w, osc)
     }
 }

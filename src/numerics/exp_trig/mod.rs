@@ -282,6 +282,19 @@ pub(crate) struct Work {
 }
 
 impl ExpTrig {
+    /// `p0 + p1 s + p2 s² + y(s)`: no harmonics (`w` sets the walk's
+    /// scale where there is no oscillator).
+    pub(crate) fn local(poly: [f64; 3], w: f64, osc: Option<DampedOscillator>) -> ExpTrig {
+        ExpTrig {
+            poly,
+            w,
+            phi: 0.0,
+            a: Vec::new(),
+            b: Vec::new(),
+            osc,
+        }
+    }
+
     /// `f'` in the same class: the polynomial's, each harmonic's
     /// (`a_k cos + b_k sin` gives `k w (b_k cos - a_k sin)`) and the
     /// oscillator's derivative.
