@@ -413,17 +413,26 @@ pub fn to_text(outcome: &Outcome) -> String {
             let _ = writeln!(
                 out,
                 "outcome: not converged: the start-up from rest did not establish its limit \
-                 within {} (run.max_periods); v_inf is not reported",
+                 within {} (run.max_periods){}",
                 crate::plural::count(state.periods_simulated, "period", "periods"),
+                if state.spring.is_some() {
+                    ""
+                } else {
+                    "; v_inf is not reported"
+                },
             );
-            let bound =
-                |b: Option<f64>| b.map_or("unknown".to_owned(), |v| format_with_error(v, None));
-            let _ = writeln!(
-                out,
-                "  v_inf lies between {} and {} m/s",
-                bound(state.v_inf_bounds.0),
-                bound(state.v_inf_bounds.1)
-            );
+            // Against a spring there is no travel to bound.
+            if state.spring.is_none() {
+                let bound = |b: Option<f64>| {
+                    b.map_or("unknown".to_owned(), |v| format_with_error(v, None))
+                };
+                let _ = writeln!(
+                    out,
+                    "  v_inf lies between {} and {} m/s",
+                    bound(state.v_inf_bounds.0),
+                    bound(state.v_inf_bounds.1)
+                );
+            }
             unsettled_text(&mut out, state, outcome.times());
             out
         }
@@ -431,7 +440,7 @@ pub fn to_text(outcome: &Outcome) -> String {
 }
 
 fn unsettled_text(out: &mut String, state: &Unsettled, times: RunTimes) {
-    if let Some(v) = state.last_v_p {
+    if let Some(v) = state.last_v_p.filter(|_| state.spring.is_none()) {
         let _ = writeln!(
             out,
             "  last mean velocity v_p = {} m/s (period {})",
