@@ -235,3 +235,36 @@ fn the_fixed_step_engine_with_a_spring_converges_at_first_order() {
     assert!(slope >= 0.8, "order {slope}: errors {errors:?}");
     assert!(errors.last().unwrap() < &1e-3, "{errors:?}");
 }
+
+/// Where the motion locks into no orbit within `run.max_periods` (a stiff
+/// free end the slider still bounces off after 300 periods), the run says
+/// so with the longest orbit looked for and the periods simulated, and
+/// reads the spring over the next 64 periods: their mean force lies within
+/// the range of a single period's means, and the slider was in and out of
+/// contact.
+#[test]
+fn a_spring_that_does_not_lock_is_read_over_the_periods_that_follow() {
+    let mut scene = with_spring(Spring {
+        stiffness: 1e6,
+        damping: 0.0,
+        end: SpringEnd::Free { gap: 0.0 },
+    });
+    scene.run.max_periods = 300;
+    let outcome = stickslip::run(&scene, &stickslip::RunOptions::default()).expect("a run");
+    let stickslip::Outcome::NotConverged(state) = outcome else {
+        panic!("locked within 300 periods: {outcome:?}");
+    };
+    let s = state.spring.expect("a spring reading");
+    assert_eq!(s.orbit_periods, 0);
+    assert_eq!(s.searched, Some((64, 300)));
+    assert_eq!(s.periods, 64);
+    let [lo, hi] = s.mean_range.expect("the range of single periods");
+    assert!(
+        lo <= s.profile.force_mean && s.profile.force_mean <= hi,
+        "{lo} {} {hi}",
+        s.profile.force_mean
+    );
+    assert!(lo < hi);
+    assert!(s.profile.contact_fraction > 0.0 && s.profile.contact_fraction < 1.0);
+    assert_eq!(s.profile.force_min, 0.0);
+}

@@ -423,9 +423,8 @@ pub fn to_text(outcome: &Outcome) -> String {
             );
             // Against a spring there is no travel to bound.
             if state.spring.is_none() {
-                let bound = |b: Option<f64>| {
-                    b.map_or("unknown".to_owned(), |v| format_with_error(v, None))
-                };
+                let bound =
+                    |b: Option<f64>| b.map_or("unknown".to_owned(), |v| format_with_error(v, None));
                 let _ = writeln!(
                     out,
                     "  v_inf lies between {} and {} m/s",
