@@ -20,7 +20,7 @@ use super::motion::{self, Row, Span};
 use super::performance::{GridPoint, figures6_7};
 use super::sweep::{SweepSpec, sweep_figure_from};
 use super::{
-    Figure, PlotError, Preset, characteristic, compare, driven, optimize, precision, scaling,
+    Figure, PlotError, Preset, bench, characteristic, compare, driven, optimize, precision, scaling,
     signals, timeline,
 };
 use crate::motor::Motor;
@@ -76,6 +76,9 @@ pub const ALL: &[Entry] = &[
     }),
     entry("characteristic_default", |_| {
         characteristic::scene_characteristic(&Scene::default(), "characteristic_default")
+    }),
+    entry("bench_default", |_| {
+        bench::scene_bench(&Scene::default(), "bench_default")
     }),
     entry("optimize_signal", |_| {
         optimize::signal_figure(optimum()?, "optimize_signal")
