@@ -88,4 +88,3 @@ pub(super) fn measure(
         wall_time: outcome.times().wall,
     })
 }
-

@@ -1,6 +1,6 @@
 //! What a bench measures: the stiffness range, its points and the kinds
 //! of spring; the stiffnesses are log spaced,
-//! `k_i = k_from (k_to / k_from)^(i / (N - 1))`, `i = 0..N`, the ends
+//! `k_i = k_from 10^(log10(k_to / k_from) i / (N - 1))`, `i = 0..N`, the ends
 //! exactly as given.
 
 use super::BenchError;
@@ -116,12 +116,12 @@ impl BenchOptions {
         if n <= 1 {
             return vec![self.from];
         }
-        let ratio = (self.to / self.from).ln();
+        let decades = (self.to / self.from).log10();
         (0..n)
             .map(|i| match i {
                 0 => self.from,
                 i if i == n - 1 => self.to,
-                i => self.from * (ratio * i as f64 / (n - 1) as f64).exp(),
+                i => self.from * 10f64.powf(decades * i as f64 / (n - 1) as f64),
             })
             .collect()
     }

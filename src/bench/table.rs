@@ -141,7 +141,8 @@ pub(crate) fn to_csv(b: &Bench, scene: &Scene) -> String {
                 cell(p.and_then(|p| ratio(p.force_max, stall))),
                 cell(p.map(|p| p.position_mean)),
                 cell(p.map(|p| p.contact_fraction)),
-                c.reading.map_or(String::new(), |r| r.orbit_periods.to_string()),
+                c.reading
+                    .map_or(String::new(), |r| r.orbit_periods.to_string()),
                 c.periods_simulated.to_string(),
                 c.certificate.map_or("", |k| k.name()).to_owned(),
                 c.note().unwrap_or_default(),
@@ -247,7 +248,9 @@ pub(crate) fn to_text(b: &Bench) -> String {
             r.free
                 .as_ref()
                 .and_then(|c| c.reading)
-                .map_or(String::new(), |r| format!("{:.4}", r.profile.contact_fraction)),
+                .map_or(String::new(), |r| {
+                    format!("{:.4}", r.profile.contact_fraction)
+                }),
         ]);
     }
     let mut widths = [0usize; 6];

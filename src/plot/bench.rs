@@ -122,23 +122,21 @@ pub fn figure(b: &Bench, scene: &Scene, name: &str) -> Result<Figure, PlotError>
     }
 
     // (b) the largest and least force.
-    let swing: Vec<f64> = b.cases().filter_map(max).chain(b.cases().filter_map(min)).collect();
+    let swing: Vec<f64> = b
+        .cases()
+        .filter_map(max)
+        .chain(b.cases().filter_map(min))
+        .collect();
     let (lo, hi) = min_max(swing.into_iter().chain([stall, 0.0]));
     let mut panel_b = Panel::new(
         Some("(b) largest and least spring force"),
         Axis::log(k_label, k_range),
         Axis::linear("spring force (N)", padded(lo, hi, 0.06)),
     );
-    panel_b.series.push(Series::hline(
-        None,
-        stall,
-        k_range,
-        Look::reference(),
-    ));
-    for (label, i, case) in [
-        ("tied", 0usize, true),
-        ("free end", 1, false),
-    ] {
+    panel_b
+        .series
+        .push(Series::hline(None, stall, k_range, Look::reference()));
+    for (label, i, case) in [("tied", 0usize, true), ("free end", 1, false)] {
         let top = pieces(b, case, max);
         let bottom = pieces(b, case, min);
         if top.is_empty() {
@@ -151,7 +149,10 @@ pub fn figure(b: &Bench, scene: &Scene, name: &str) -> Result<Figure, PlotError>
         panel_b.series.push(curve(
             &format!("{label}, least"),
             bottom,
-            Look { weight: 0.7, ..look },
+            Look {
+                weight: 0.7,
+                ..look
+            },
         ));
     }
 
@@ -166,10 +167,7 @@ pub fn figure(b: &Bench, scene: &Scene, name: &str) -> Result<Figure, PlotError>
         startup.map_or("none".to_owned(), |f| format!("{} N", short(f))),
     );
     if !missing.is_empty() {
-        note.push_str(&format!(
-            " No steady orbit: {}.",
-            missing.join(", ")
-        ));
+        note.push_str(&format!(" No steady orbit: {}.", missing.join(", ")));
     }
     Ok(Figure {
         name: name.to_owned(),

@@ -20,8 +20,8 @@ use super::motion::{self, Row, Span};
 use super::performance::{GridPoint, figures6_7};
 use super::sweep::{SweepSpec, sweep_figure_from};
 use super::{
-    Figure, PlotError, Preset, bench, characteristic, compare, driven, optimize, precision, scaling,
-    signals, timeline,
+    Figure, PlotError, Preset, bench, characteristic, compare, driven, optimize, precision,
+    scaling, signals, timeline,
 };
 use crate::motor::Motor;
 use crate::optimize::map::{self, MapGrid};
