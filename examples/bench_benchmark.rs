@@ -79,8 +79,8 @@ fn main() {
             .map_or("none".to_owned(), |f| format!("{f:.6}"))
     );
     println!(
-        "reference forces alone: median {:.3} s over {repeats} runs",
-        median(reference_walls)
+        "reference forces alone: median {:.3} ms over {repeats} runs",
+        median(reference_walls) * 1e3
     );
     println!(
         "bench (default scene, {} stiffnesses, tied and free, {} threads): median wall time {:.3} s over {repeats} runs",

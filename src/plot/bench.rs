@@ -52,6 +52,21 @@ fn pieces(
     out
 }
 
+/// The look of the tied (0) and the free-ended (1) spring's curves: the
+/// free end's with markers, so that a stiffness between two without a
+/// steady orbit still shows.
+fn look(i: usize) -> Look {
+    let look = Look::nth(i);
+    if i == 1 {
+        Look {
+            marker: super::style::Marker::Circle,
+            ..look
+        }
+    } else {
+        look
+    }
+}
+
 fn curve(label: &str, pieces: Vec<Vec<(f64, f64)>>, look: Look) -> Series {
     Series {
         label: Some(label.to_owned()),
@@ -113,11 +128,8 @@ pub fn figure(b: &Bench, scene: &Scene, name: &str) -> Result<Figure, PlotError>
     ];
     for (label, i, p) in kinds {
         if !p.is_empty() {
-            a.series.push(curve(
-                &format!("{label}, mean"),
-                p,
-                Look::nth(i).weighted(1.2),
-            ));
+            a.series
+                .push(curve(&format!("{label}, mean"), p, look(i).weighted(1.2)));
         }
     }
 
@@ -142,7 +154,7 @@ pub fn figure(b: &Bench, scene: &Scene, name: &str) -> Result<Figure, PlotError>
         if top.is_empty() {
             continue;
         }
-        let look = Look::nth(i);
+        let look = look(i);
         panel_b
             .series
             .push(curve(&format!("{label}, largest"), top, look.weighted(1.2)));

@@ -78,7 +78,7 @@ pub const ALL: &[Entry] = &[
         characteristic::scene_characteristic(&Scene::default(), "characteristic_default")
     }),
     entry("bench_default", |_| {
-        bench::scene_bench(&Scene::default(), "bench_default")
+        bench::figure(bench_default()?, &Scene::default(), "bench_default")
     }),
     entry("optimize_signal", |_| {
         optimize::signal_figure(optimum()?, "optimize_signal")
@@ -257,6 +257,19 @@ fn optimum() -> Result<&'static Optimum, PlotError> {
     });
     found.as_ref().map_err(|e| PlotError::Data {
         figure: "optimize".to_owned(),
+        reason: e.clone(),
+    })
+}
+
+/// The bench of the default scene with the default options, computed once.
+fn bench_default() -> Result<&'static crate::bench::Bench, PlotError> {
+    static BENCH: OnceLock<Result<crate::bench::Bench, String>> = OnceLock::new();
+    let found = BENCH.get_or_init(|| {
+        crate::bench::bench(&Scene::default(), &crate::bench::BenchOptions::default())
+            .map_err(|e| e.to_string())
+    });
+    found.as_ref().map_err(|e| PlotError::Data {
+        figure: "bench_default".to_owned(),
         reason: e.clone(),
     })
 }
