@@ -78,7 +78,7 @@
 //!    ones), [`sweep`], [`characteristic`] (velocity against load, stall
 //!    force), [`optimize`] (the best drive signal), [`plot`]
 //!    (`plot/<figure family>.rs`);
-//! 10. [`bench`]: the spring method's reading against stiffness, beside
+//! 10. [`bench`](mod@bench): the spring method's reading against stiffness, beside
 //!     the stall force and the start-up force (the characteristic's);
 //! 11. [`cli`], the `stickslip` command.
 //!

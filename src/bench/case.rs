@@ -74,7 +74,7 @@ pub(super) fn measure(
     scene: &Scene,
     spring: Spring,
     signals: &SignalCache,
-) -> Result<SpringCase, crate::Error> {
+) -> Result<SpringCase, crate::error::Error> {
     let s = case_scene(scene, spring);
     let outcome = signals.simulate(&s)?;
     let report = outcome.report();

@@ -79,7 +79,7 @@ pub enum BenchError {
         stiffness: f64,
         /// The simulator's error.
         #[source]
-        source: crate::Error,
+        source: crate::error::Error,
     },
 }
 
