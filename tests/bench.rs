@@ -43,6 +43,7 @@ fn tied_mean_force_tends_to_the_stall_force_in_proportion_to_the_stiffness() {
         to: 1e4,
         points: 4,
         kinds: SpringKinds::Tied,
+        ..BenchOptions::default()
     };
     let b = bench::bench(&Scene::default(), &options).unwrap();
     let stall = b.stall_force();

@@ -42,10 +42,15 @@ impl SpringCase {
         }
     }
 
-    /// Why there is no reading, in words; `None` with a reading.
+    /// Why there is no orbit's reading, in words; `None` with one.
     pub fn note(&self) -> Option<String> {
-        if self.reading.is_some() {
-            return None;
+        if let Some(r) = &self.reading {
+            return (r.orbit_periods == 0).then(|| {
+                format!(
+                    "no orbit of up to 64 periods locked within {} periods from rest; read over the next {}",
+                    self.periods_simulated, r.periods
+                )
+            });
         }
         Some(match self.regime {
             "not_converged" => format!(
@@ -60,9 +65,10 @@ impl SpringCase {
 
 /// `scene` as one case runs it: with `spring`, only the friction energy
 /// asked, no trajectory and no event log.
-pub(super) fn case_scene(scene: &Scene, spring: Spring) -> Scene {
+pub(super) fn case_scene(scene: &Scene, spring: Spring, max_periods: u64) -> Scene {
     let mut s = scene.clone();
     s.spring = Some(spring);
+    s.run.max_periods = max_periods;
     s.outputs.indicators = vec![Indicator::FrictionEnergy];
     s.outputs.trajectory = false;
     s.outputs.events = false;
@@ -73,15 +79,20 @@ pub(super) fn case_scene(scene: &Scene, spring: Spring) -> Scene {
 pub(super) fn measure(
     scene: &Scene,
     spring: Spring,
+    max_periods: u64,
     signals: &SignalCache,
 ) -> Result<SpringCase, crate::error::Error> {
-    let s = case_scene(scene, spring);
+    let s = case_scene(scene, spring, max_periods);
     let outcome = signals.simulate(&s)?;
     let report = outcome.report();
     Ok(SpringCase {
         spring,
         regime: outcome.regime(),
-        reading: report.and_then(|r| r.spring),
+        // An orbit's reading, or the reading after a start-up that locked
+        // into none.
+        reading: report
+            .and_then(|r| r.spring)
+            .or_else(|| outcome.unsettled().and_then(|u| u.spring)),
         periods_simulated: outcome.periods_simulated(),
         certificate: report.map(|r| r.certificate.kind),
         max_periods: s.run.max_periods,

@@ -9,9 +9,10 @@
 //! asked (tied, free-ended) the scene runs with that spring (`case`) and
 //! the spring's reading over the steady orbit is collected: the mean,
 //! largest and least spring force, the contact fraction, the orbit's
-//! periods and the periods simulated. A case without a steady orbit (not
-//! established within `run.max_periods`) is a row that says so, not an
-//! error. The springs take the scene's own `[spring]`, if any: a tied one
+//! periods and the periods simulated. A case whose motion locks into no orbit (of up to
+//! 64 periods) within `max_periods` periods from rest (default 20000) is a
+//! row that says so, with the spring read over the 64 periods after them
+//! and the range of a single period's mean force: not an error. The springs take the scene's own `[spring]`, if any: a tied one
 //! its damping and preload, a free end its gap; without it (or for the
 //! other kind) a tied spring without damping or preload and a free end at
 //! gap 0. Every case runs on rayon's global pool, sharing one signal.
@@ -48,7 +49,8 @@ use crate::simulation::SignalCache;
 use crate::spring::{Spring, SpringEnd};
 pub use case::SpringCase;
 pub use options::{
-    BenchOptions, DEFAULT_FROM, DEFAULT_POINTS, DEFAULT_TO, MAX_POINTS, SpringKinds,
+    BenchOptions, DEFAULT_FROM, DEFAULT_MAX_PERIODS, DEFAULT_POINTS, DEFAULT_TO, MAX_POINTS,
+    SpringKinds,
 };
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
@@ -181,7 +183,7 @@ pub fn bench(scene: &Scene, options: &BenchOptions) -> Result<Bench, BenchError>
             springs
                 .par_iter()
                 .map(|&spring| {
-                    case::measure(scene, spring, &signals).map_err(|source| {
+                    case::measure(scene, spring, options.max_periods, &signals).map_err(|source| {
                         BenchError::Simulation {
                             kind: match spring.end {
                                 SpringEnd::Tied { .. } => "tied",

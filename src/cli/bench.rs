@@ -28,6 +28,10 @@ pub(crate) struct BenchArgs {
     /// Number of stiffnesses, log spaced from --from to --to.
     #[arg(long, value_name = "N", default_value_t = bench::DEFAULT_POINTS)]
     points: usize,
+    /// Periods from rest within which a spring's orbit must lock; a case
+    /// that locks into none is read over the 64 periods after them
+    #[arg(long, value_name = "N", default_value_t = bench::DEFAULT_MAX_PERIODS)]
+    max_periods: u64,
     /// Only the spring tied to the slider.
     #[arg(long, conflicts_with = "free")]
     tied: bool,
@@ -85,6 +89,7 @@ pub(crate) fn bench(args: BenchArgs, streams: &mut Streams<'_>) -> Result<(), Fa
         from: args.from,
         to: args.to,
         points: args.points,
+        max_periods: args.max_periods,
         kinds: match (args.tied, args.free) {
             (true, _) => SpringKinds::Tied,
             (_, true) => SpringKinds::Free,

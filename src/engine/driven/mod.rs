@@ -48,54 +48,31 @@
 //! vanishes: the rod follows the signal and the run equals the prescribed
 //! rod's (`tests/driven_rod.rs`).
 
+mod period_engine;
 mod profile;
 mod segment;
 mod slider;
 mod spring_profile;
+mod state;
 
 pub use profile::DriveProfile;
 pub use spring_profile::SpringProfile;
+pub use state::{DrivenState, SliderState};
+use state::{Walk, contact_change};
 
 use super::contact::{Band, Contact, transition};
 use super::{
-    Direction, Event, EventKind, Kinematics, Mode, Observer, PeriodEnd, PeriodEngine, PeriodStart,
-    Segment, WorkCounters,
+    Direction, Event, EventKind, Kinematics, Mode, Observer, PeriodEnd, PeriodStart, Segment,
+    WorkCounters,
 };
 use crate::actuator::{DrivenRod, Load};
 use crate::error::SimulationError;
 use crate::motor::Motor;
-use crate::numerics::exp_trig::{Crossing, ExpTrig, Start};
+use crate::numerics::exp_trig::ExpTrig;
 use crate::signal::{RodState, Signal};
 use crate::spring::Spring;
 use segment::{ModeFunctions, StickExit};
 use slider::{SliderMotion, SpringLaw};
-
-/// The rod's and the slider's state at a period boundary.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DrivenState {
-    /// Rod position (m).
-    pub rod_x: f64,
-    /// Rod velocity (m/s).
-    pub rod_v: f64,
-    /// Slider velocity (m/s).
-    pub slider_v: f64,
-    /// The mode the period ended in.
-    pub mode: Mode,
-    /// With a spring against the slider: its position from its start (m)
-    /// and whether it is in contact with the spring's free end (always
-    /// for a tied spring). Without a spring the position does not enter
-    /// the motion, and is `None`.
-    pub slider: Option<SliderState>,
-}
-
-/// A slider's place against a spring.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SliderState {
-    /// Position from the slider's start (m).
-    pub x: f64,
-    /// In contact with the spring.
-    pub contact: bool,
-}
 
 /// The exact engine for a rod driven through the actuator.
 #[derive(Debug, Clone)]
@@ -664,137 +641,5 @@ impl<'s> DrivenEngine<'s> {
             at,
             observer,
         )
-    }
-}
-
-/// Mutable state of the walk through one period.
-struct Walk {
-    period: u64,
-    tau: f64,
-    /// The rod's state at `tau`.
-    rod: Kinematics,
-    /// Slider position relative to the period start (m).
-    x: f64,
-    /// Slider velocity (m/s).
-    v: f64,
-    uncertainty: f64,
-    /// The largest bound on an event time's error in the period (s).
-    time_error: f64,
-    events: u64,
-    mode: Mode,
-    /// `v_rel = 0` at `tau` and the slip leaves zero: not an event again.
-    departure: bool,
-    /// The slider's position from its start at the period start (m).
-    x_start: f64,
-    /// In contact with the spring (always with a tied one).
-    contact: bool,
-    /// The slider is at the spring's free end at `tau` (a contact event
-    /// there, or a start there): not an event again.
-    at_end: bool,
-}
-
-impl Walk {
-    /// In contact, and `x_S - x_R` at `tau`.
-    fn place(&self) -> (bool, f64) {
-        (self.contact, self.x_start + self.x - self.rod.x)
-    }
-}
-
-/// The first time within `(0, span]` the slider meets (`!contact`, a
-/// rising zero of `f = x_S - x_gap`) or leaves (`contact`, a falling one)
-/// the free end; touches and crossings the other way are passed over.
-/// `at_end`: it is at the end at `s = 0`, which is not an event again.
-fn contact_change(f: &ExpTrig, span: f64, contact: bool, at_end: bool) -> Option<f64> {
-    let mut from = 0.0;
-    let mut start = if at_end {
-        Start::AfterEvent
-    } else {
-        Start::Clear
-    };
-    loop {
-        match f.first_zero(from, span, 0.0, start)? {
-            Crossing::Transversal { s, rising } if rising != contact => return Some(s),
-            c => {
-                let s = c.s();
-                if s <= from || s >= span {
-                    return None;
-                }
-                from = s;
-                start = Start::AfterEvent;
-            }
-        }
-    }
-}
-
-impl PeriodEngine for DrivenEngine<'_> {
-    fn signal(&self) -> &Signal {
-        self.signal
-    }
-
-    fn run_period<O: Observer>(
-        &mut self,
-        period: u64,
-        start: PeriodStart,
-        observer: &mut O,
-    ) -> Result<PeriodEnd, SimulationError> {
-        self.run_period_impl(period, start, observer)
-    }
-
-    fn counters(&self) -> WorkCounters {
-        self.counters
-    }
-
-    fn zero_velocity_tolerance(&self) -> f64 {
-        self.contact.tol_v
-    }
-
-    fn last_velocity_uncertainty(&self) -> Option<f64> {
-        Some(self.last_uncertainty)
-    }
-
-    /// The largest event-time bound of the last period: the solver's
-    /// tolerance plus `eta / |v_rel'|` at each zero of `v_rel`.
-    fn event_time_uncertainty(&self) -> f64 {
-        self.last_time_error
-    }
-
-    fn carries_rod_state(&self) -> bool {
-        true
-    }
-
-    fn drive_profile(&self, segments: &[Segment]) -> Option<DriveProfile> {
-        let Signal::Fourier(signal) = self.signal else {
-            return None;
-        };
-        let rod = self.rod?;
-        Some(profile::profile(segments, rod, signal, |mode| {
-            self.functions(mode)
-        }))
-    }
-
-    fn boundary_state(&self) -> Option<DrivenState> {
-        self.state
-    }
-
-    fn spring_profile(
-        &self,
-        start: &DrivenState,
-        (segments, events): (&[Segment], &[Event]),
-        periods: u64,
-    ) -> Option<SpringProfile> {
-        let law = self.spring.as_ref()?;
-        Some(spring_profile::profile(
-            law,
-            start,
-            (segments, events),
-            (self.period, periods),
-            |dir| self.contact.slip_acceleration(dir),
-            |mode| self.functions(mode),
-        ))
-    }
-
-    fn restart_from(&mut self, state: DrivenState) -> bool {
-        self.state = Some(state);
-        true
     }
 }
