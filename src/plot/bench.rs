@@ -1,12 +1,13 @@
 //! The spring method against stiffness ([`crate::bench`]) as a figure.
 //!
-//! Panel (a): the spring's mean force against the stiffness `k` (log
-//! axis), tied and free-ended, with the stall force (weight method) and
-//! the start-up force (Newton method) as horizontal reference lines named
-//! by their values. Panel (b): the spring's largest and least force over
-//! the orbit (its swing), tied and free-ended, with the stall force again.
-//! A stiffness without a steady orbit breaks the curves and is named in
-//! the note. The CSV beside the figure is the bench's table
+//! Panel (a): how far the spring's mean force departs from the stall
+//! force (weight method), `|F_spring / F_stall - 1|`, against the
+//! stiffness `k`, both axes logarithmic, tied and free-ended; a free end
+//! the slider keeps bouncing off (no orbit locked) as points of its
+//! 64-period mean. Panel (b): the spring's largest and least force over
+//! the orbit (its swing), with the stall force and the start-up force
+//! (Newton method) as reference lines named by their values. A stiffness
+//! without a reading breaks the curves and is named in the note. The CSV beside the figure is the bench's table
 //! (`table::to_csv`).
 
 use super::axes::tick_label;
@@ -101,36 +102,59 @@ pub fn figure(b: &Bench, scene: &Scene, name: &str) -> Result<Figure, PlotError>
     let stall_label = format!("stall force {} N", short(stall));
     let startup_label = startup.map(|f| format!("start-up force {} N", short(f)));
 
-    // (a) the mean force.
-    let (lo, hi) = min_max(means.iter().copied().chain([stall, 0.0]).chain(startup));
+    // (a) how far the mean force departs from the stall force, relative:
+    // the spring method's error, over decades. Orbits as curves; a free end
+    // that locked into no orbit as open points (its 64-period mean).
+    let departure = |c: &SpringCase| {
+        c.reading
+            .filter(|r| r.orbit_periods > 0)
+            .map(|r| (r.profile.force_mean / stall - 1.0).abs())
+            .filter(|d| *d > 0.0)
+    };
+    let unlocked = |c: &SpringCase| {
+        c.reading
+            .filter(|r| r.orbit_periods == 0)
+            .map(|r| (r.profile.force_mean / stall - 1.0).abs())
+            .filter(|d| *d > 0.0)
+    };
+    let shown: Vec<f64> = b
+        .cases()
+        .filter_map(departure)
+        .chain(b.cases().filter_map(unlocked))
+        .collect();
+    let (lo, hi) = min_max(shown.iter().copied());
     let mut a = Panel::new(
-        Some("(a) mean spring force"),
+        Some("(a) mean spring force against the stall force"),
         Axis::log(k_label, k_range),
-        Axis::linear("mean force (N)", padded(lo, hi, 0.06)),
+        Axis::log(
+            "$|F_{spring} / F_{stall} - 1|$",
+            (lo.max(1e-16) / 2.0, hi.max(lo * 10.0) * 2.0),
+        ),
     );
-    a.series.push(Series::hline(
-        Some(&stall_label),
-        stall,
-        k_range,
-        Look::reference(),
-    ));
-    if let (Some(f), Some(label)) = (startup, &startup_label) {
-        a.series.push(Series::hline(
-            Some(label),
-            f,
-            k_range,
-            Look::line(GREY, Dash::Dotted),
-        ));
-    }
     let kinds = [
-        ("tied", 0usize, pieces(b, true, mean)),
-        ("free end", 1, pieces(b, false, mean)),
+        ("tied", 0usize, pieces(b, true, departure)),
+        ("free end", 1, pieces(b, false, departure)),
     ];
     for (label, i, p) in kinds {
         if !p.is_empty() {
-            a.series
-                .push(curve(&format!("{label}, mean"), p, look(i).weighted(1.2)));
+            a.series.push(curve(label, p, look(i).weighted(1.2)));
         }
+    }
+    let bouncing: Vec<(f64, f64)> = b
+        .rows
+        .iter()
+        .filter_map(|r| r.free.as_ref().and_then(unlocked).map(|d| (r.stiffness, d)))
+        .collect();
+    if !bouncing.is_empty() {
+        a.series.push(Series {
+            label: Some("free end, no orbit (64-period mean)".to_owned()),
+            pieces: vec![bouncing],
+            look: Look {
+                marker: super::style::Marker::Square,
+                ..Look::nth(2)
+            },
+            kind: super::Kind::Points,
+        });
     }
 
     // (b) the largest and least force.
@@ -139,15 +163,26 @@ pub fn figure(b: &Bench, scene: &Scene, name: &str) -> Result<Figure, PlotError>
         .filter_map(max)
         .chain(b.cases().filter_map(min))
         .collect();
-    let (lo, hi) = min_max(swing.into_iter().chain([stall, 0.0]));
+    let (lo, hi) = min_max(swing.into_iter().chain([stall, 0.0]).chain(startup));
     let mut panel_b = Panel::new(
         Some("(b) largest and least spring force"),
         Axis::log(k_label, k_range),
         Axis::linear("spring force (N)", padded(lo, hi, 0.06)),
     );
-    panel_b
-        .series
-        .push(Series::hline(None, stall, k_range, Look::reference()));
+    panel_b.series.push(Series::hline(
+        Some(&stall_label),
+        stall,
+        k_range,
+        Look::reference(),
+    ));
+    if let (Some(f), Some(label)) = (startup, &startup_label) {
+        panel_b.series.push(Series::hline(
+            Some(label),
+            f,
+            k_range,
+            Look::line(GREY, Dash::Dotted),
+        ));
+    }
     for (label, i, case) in [("tied", 0usize, true), ("free end", 1, false)] {
         let top = pieces(b, case, max);
         let bottom = pieces(b, case, min);
@@ -163,6 +198,7 @@ pub fn figure(b: &Bench, scene: &Scene, name: &str) -> Result<Figure, PlotError>
             bottom,
             Look {
                 weight: 0.7,
+                dash: Dash::Dashed,
                 ..look
             },
         ));

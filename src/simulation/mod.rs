@@ -94,6 +94,7 @@ mod certified;
 mod drive;
 mod driven;
 mod outcome;
+mod spring_reading;
 
 pub use crate::analysis::ErrorEstimate;
 pub use cache::SignalCache;
