@@ -283,7 +283,7 @@ pub(crate) fn to_text(b: &Bench) -> String {
         })
         .collect();
     if !notes.is_empty() {
-        let _ = writeln!(out, "without a reading:");
+        let _ = writeln!(out, "without a steady orbit:");
         for n in notes {
             out.push_str(&n);
             out.push('\n');

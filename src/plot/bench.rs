@@ -206,7 +206,7 @@ pub fn figure(b: &Bench, scene: &Scene, name: &str) -> Result<Figure, PlotError>
 
     let missing: Vec<String> = b
         .cases()
-        .filter(|c| c.reading.is_none())
+        .filter(|c| c.reading.is_none_or(|r| r.orbit_periods == 0))
         .map(|c| format!("{} at {} N/m", c.end_name(), short(c.spring.stiffness)))
         .collect();
     let mut note = format!(
@@ -215,7 +215,11 @@ pub fn figure(b: &Bench, scene: &Scene, name: &str) -> Result<Figure, PlotError>
         startup.map_or("none".to_owned(), |f| format!("{} N", short(f))),
     );
     if !missing.is_empty() {
-        note.push_str(&format!(" No steady orbit: {}.", missing.join(", ")));
+        note.push_str(&format!(
+            " No steady orbit within {} periods (read over the next 64): {}.",
+            b.options.max_periods,
+            missing.join(", ")
+        ));
     }
     Ok(Figure {
         name: name.to_owned(),
