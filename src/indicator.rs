@@ -128,12 +128,20 @@ impl Indicator {
     }
 
     /// Why this indicator cannot be computed for the given signal and
-    /// actuator, or `None` if it can.
+    /// actuator, with or without a spring against the slider, or `None` if
+    /// it can.
     pub fn unavailable_because(
         self,
         signal: &SignalSpec,
         actuator: Option<&ActuatorParams>,
+        spring: bool,
     ) -> Option<&'static str> {
+        if spring && self.assumes_travel() {
+            return Some(
+                "assumes net travel: against a spring ([spring]) the slider oscillates about \
+                 its equilibrium; the run reports the spring's force instead",
+            );
+        }
         if self != Indicator::VelocityPerPower {
             return None;
         }
@@ -149,13 +157,31 @@ impl Indicator {
         }
     }
 
-    /// The indicators a scene with this signal and actuator can compute,
-    /// in the order of [`Indicator::ALL`].
-    pub fn available(signal: &SignalSpec, actuator: Option<&ActuatorParams>) -> Vec<Indicator> {
+    /// The indicators a scene with this signal and actuator, with or
+    /// without a spring, can compute, in the order of [`Indicator::ALL`].
+    pub fn available(
+        signal: &SignalSpec,
+        actuator: Option<&ActuatorParams>,
+        spring: bool,
+    ) -> Vec<Indicator> {
         Self::ALL
             .into_iter()
-            .filter(|i| i.unavailable_because(signal, actuator).is_none())
+            .filter(|i| i.unavailable_because(signal, actuator, spring).is_none())
             .collect()
+    }
+
+    /// The indicators that assume the slider travels on (a mean velocity):
+    /// `v_inf`, the start-up time, the smoothness, the durability and the
+    /// velocity per power. Against a spring they have no meaning.
+    pub fn assumes_travel(self) -> bool {
+        matches!(
+            self,
+            Indicator::VInf
+                | Indicator::StartupTime
+                | Indicator::Smoothness
+                | Indicator::Durability
+                | Indicator::VelocityPerPower
+        )
     }
 }
 

@@ -78,7 +78,9 @@
 //!    ones), [`sweep`], [`characteristic`] (velocity against load, stall
 //!    force), [`optimize`] (the best drive signal), [`plot`]
 //!    (`plot/<figure family>.rs`);
-//! 10. [`cli`], the `stickslip` command.
+//! 10. [`bench`](mod@bench): the spring method's reading against stiffness, beside
+//!     the stall force and the start-up force (the characteristic's);
+//! 11. [`cli`], the `stickslip` command.
 //!
 //! Only the names below are public; the rest of the tree is crate-private.
 
@@ -96,6 +98,7 @@
 
 pub mod actuator;
 pub mod analysis;
+pub mod bench;
 pub mod characteristic;
 pub mod check;
 #[cfg(feature = "cli")]

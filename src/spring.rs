@@ -1,5 +1,5 @@
 //! The slider against a spring: the spring method of measuring an inertia
-//! motor's force (the paper's section 5).
+//! motor's force (the paper's section 5; docs/model.md section 17).
 //!
 //! ```text
 //! slider: m_s a_S = F_f + m_s g_t - F_spring

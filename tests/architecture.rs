@@ -37,6 +37,7 @@ const LAYERS: &[&[&str]] = &[
     &["simulation"],
     &["report", "check", "compare"],
     &["export", "sweep", "characteristic", "optimize"],
+    &["bench"],
     &["plot"],
     &["cli"],
 ];

@@ -13,6 +13,10 @@
 //! The closed form is written out here (periodic particular solution plus
 //! the damped free response), independently of the crate's own.
 
+#[path = "common/one_body.rs"]
+mod one_body;
+
+use one_body::Oscillator;
 use stickslip::Scene;
 use stickslip::actuator::{DrivenRod, DrivenSpec, RealActuator, Voltage};
 use stickslip::engine::{
@@ -84,86 +88,6 @@ fn run(
     (ends, trajectory.segments, rods)
 }
 
-/// `m x'' + d x' + c x = alpha u(t) + force` with the voltage of `rod`,
-/// solved in closed form.
-struct Oscillator {
-    mass: f64,
-    damping: f64,
-    stiffness: f64,
-    /// `(alpha u_0 + force) / c` (m).
-    constant: f64,
-    /// `omega` (rad/s).
-    omega: f64,
-    /// `X_k = alpha U_k / (c - m (k w)^2 + i d k w)`, `U_k = P_k - i Q_k`,
-    /// as `(re, im)`; the particular solution is `sum Re(X_k e^{i k w t})`.
-    harmonics: Vec<(f64, f64)>,
-}
-
-impl Oscillator {
-    fn new(rod: &DrivenRod, mass: f64, force: f64) -> Self {
-        let real = rod.real();
-        let voltage = rod.voltage();
-        let omega = voltage.omega();
-        let alpha = real.transfer_factor;
-        let harmonics = voltage
-            .harmonics()
-            .enumerate()
-            .map(|(i, (p, q))| {
-                let kw = (i + 1) as f64 * omega;
-                let (zr, zi) = (real.stiffness - mass * kw * kw, real.damping * kw);
-                let (ur, ui) = (alpha * p, -alpha * q);
-                let norm = zr * zr + zi * zi;
-                ((ur * zr + ui * zi) / norm, (ui * zr - ur * zi) / norm)
-            })
-            .collect();
-        Self {
-            mass,
-            damping: real.damping,
-            stiffness: real.stiffness,
-            constant: (alpha * voltage.offset() + force) / real.stiffness,
-            omega,
-            harmonics,
-        }
-    }
-
-    /// The periodic particular solution at time `t`.
-    fn particular(&self, t: f64) -> Kinematics {
-        let mut x = self.constant;
-        let mut v = 0.0;
-        for (i, (xr, xi)) in self.harmonics.iter().enumerate() {
-            let kw = (i + 1) as f64 * self.omega;
-            let (s, c) = (kw * t).sin_cos();
-            // Re((xr + i xi)(c + i s)) and its derivative.
-            x += xr * c - xi * s;
-            v += kw * (-xr * s - xi * c);
-        }
-        Kinematics { x, v }
-    }
-
-    /// The state at `t1` of the motion through `state` at `t0`: the
-    /// particular solution plus the free damped oscillation
-    /// `e^{-sigma t} (A cos w_d t + B sin w_d t)` that makes up the
-    /// difference (underdamped: `c / m > sigma^2`).
-    fn advance(&self, state: Kinematics, t0: f64, t1: f64) -> Kinematics {
-        let sigma = self.damping / (2.0 * self.mass);
-        let omega0_sq = self.stiffness / self.mass;
-        let wd = (omega0_sq - sigma * sigma).sqrt();
-        assert!(wd > 0.0, "the actuator is underdamped");
-        let p0 = self.particular(t0);
-        let (h0, dh0) = (state.x - p0.x, state.v - p0.v);
-        let tau = t1 - t0;
-        let (s, c) = (wd * tau).sin_cos();
-        let e = (-sigma * tau).exp();
-        let h = e * (h0 * c + (dh0 + sigma * h0) / wd * s);
-        let dh = e * (dh0 * c - (sigma * dh0 + omega0_sq * h0) / wd * s);
-        let p1 = self.particular(t1);
-        Kinematics {
-            x: p1.x + h,
-            v: p1.v + dh,
-        }
-    }
-}
-
 /// Convergence orders `log2(e_i / e_{i+1})` of errors at doubling step
 /// counts.
 fn orders(errors: &[f64]) -> Vec<f64> {
@@ -224,7 +148,15 @@ fn slider_that_never_slips_moves_with_the_rod_as_one_body() {
     })
     .expect("a valid motor");
     let rod = driven_rod(&signal, &motor, true);
-    let body = Oscillator::new(&rod, actuator.mass + motor.params().slider_mass, 0.0);
+    let body = Oscillator::new(
+        &rod,
+        [
+            actuator.mass + motor.params().slider_mass,
+            actuator.damping,
+            actuator.stiffness,
+            0.0,
+        ],
+    );
     let period = signal.period();
     let periods = 6;
     let mut errors = Vec::new();
@@ -285,9 +217,33 @@ fn rod_with_reaction_obeys_its_equation_through_slip_and_stick() {
     let rod = driven_rod(&signal, &motor, true);
     let friction = motor.mu_d() * motor.contact_force();
     let ms = motor.params().slider_mass;
-    let forward = Oscillator::new(&rod, actuator.mass, -friction);
-    let backward = Oscillator::new(&rod, actuator.mass, friction);
-    let stuck = Oscillator::new(&rod, actuator.mass + ms, ms * motor.g_t());
+    let forward = Oscillator::new(
+        &rod,
+        [
+            actuator.mass,
+            actuator.damping,
+            actuator.stiffness,
+            -friction,
+        ],
+    );
+    let backward = Oscillator::new(
+        &rod,
+        [
+            actuator.mass,
+            actuator.damping,
+            actuator.stiffness,
+            friction,
+        ],
+    );
+    let stuck = Oscillator::new(
+        &rod,
+        [
+            actuator.mass + ms,
+            actuator.damping,
+            actuator.stiffness,
+            ms * motor.g_t(),
+        ],
+    );
     let period = signal.period();
     let mut errors = Vec::new();
     for steps in [500, 1000, 2000, 4000, 8000] {

@@ -712,7 +712,7 @@ proptest! {
                 extra_acceleration: g_t,
             },
             outputs: Outputs {
-                indicators: Indicator::available(&signal, actuator.as_ref()),
+                indicators: Indicator::available(&signal, actuator.as_ref(), false),
                 trajectory,
                 events,
             },
@@ -720,6 +720,7 @@ proptest! {
             actuator,
             rod: stickslip::actuator::RodModel::Prescribed,
             voltage: None,
+            spring: None,
             run: RunSettings {
                 engine: EngineKind::Event,
                 steps_per_harmonic: steps,

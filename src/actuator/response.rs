@@ -43,6 +43,10 @@ pub(crate) struct ModeResponse {
     pub omega0: f64,
     /// The periodic particular solution.
     pub particular: FourierSignal,
+    /// Whether the rod has a free oscillation of its own: false for a rod
+    /// that follows its signal whatever acts on it
+    /// ([`ModeResponse::prescribed`]).
+    pub free: bool,
 }
 
 impl ModeResponse {
@@ -70,6 +74,22 @@ impl ModeResponse {
             sigma: actuator.damping / (2.0 * mass),
             omega0: (actuator.stiffness / mass).sqrt(),
             particular,
+            free: true,
+        }
+    }
+
+    /// A rod that follows `signal` whatever acts on it (the paper's
+    /// prescribed rod): the particular solution is the signal, there is no
+    /// free oscillation. `sigma` and `omega0` are the signal's fundamental
+    /// (they only set the scale of the free part's zero terms).
+    pub(crate) fn prescribed(signal: &FourierSignal) -> Self {
+        Self {
+            mass: 1.0,
+            force: 0.0,
+            sigma: signal.omega(),
+            omega0: signal.omega(),
+            particular: signal.clone(),
+            free: false,
         }
     }
 

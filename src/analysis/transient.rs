@@ -57,6 +57,11 @@ pub struct Transient {
     pub run_away: Option<Direction>,
     /// How the limit was established, when it was.
     pub converged_by: Option<Convergence>,
+    /// Periods in the repeating cycle of boundary states where the limit
+    /// was established by a repetition ([`Convergence::Exact`]): 1 for a
+    /// state that repeated after one period, `k` for a cycle of `k`
+    /// (a subharmonic orbit against a spring, or a cycle of a few doubles).
+    pub cycle: u64,
 }
 
 /// The test that established the limit of the start-up.
@@ -248,8 +253,24 @@ where
     let mut boundary_velocities = Vec::new();
     let mut run_away = None;
     let mut converged_by = None;
-    let mut recent: std::collections::VecDeque<(u64, Mode)> =
+    // The boundary state by its bits: the slider's velocity and mode, and
+    // where the engine carries more (a driven rod, a spring against the
+    // slider) its rod state and the slider's place against the spring.
+    let key = |engine: &E, end: &PeriodEnd| -> [u64; 5] {
+        let z = engine.boundary_state();
+        [
+            end.velocity.to_bits(),
+            z.map_or(0, |z| z.rod_x.to_bits()),
+            z.map_or(0, |z| z.rod_v.to_bits()),
+            z.and_then(|z| z.slider).map_or(0, |p| p.x.to_bits()),
+            z.and_then(|z| z.slider)
+                .map_or(0, |p| if p.contact { 1 } else { 2 }),
+        ]
+    };
+    let mut recent: std::collections::VecDeque<([u64; 5], Mode)> =
         std::collections::VecDeque::with_capacity(CYCLE);
+    let mut last_key: Option<[u64; 5]> = None;
+    let mut cycle = 0u64;
     // The map derivative of the previous period, if its boundary state
     // repeated within rounding.
     let mut rounded_before: Option<f64> = None;
@@ -267,7 +288,9 @@ where
         boundary_velocities.push(end.velocity);
         let change = end.velocity - start.velocity;
         let same_mode = start.mode == Some(end.mode);
-        let repeated = change == 0.0 && same_mode;
+        let state_key = key(engine, &end);
+        let repeated = change == 0.0 && same_mode && last_key == Some(state_key);
+        last_key = Some(state_key);
         let rounding = rounding_velocity_of(engine.signal(), stats.last.events.total());
         let rounded = same_mode && change.abs() <= rounding;
         start = PeriodStart {
@@ -284,6 +307,7 @@ where
             remaining = Some(0.0);
             v_inf_error = Some(tol);
             converged_by = Some(Convergence::Exact);
+            cycle = 1;
             break;
         }
         let ev = &stats.last.events;
@@ -319,8 +343,9 @@ where
         }
         // A state seen again within the last CYCLE periods: the computed
         // orbit is periodic from there on (a cycle of a few doubles).
-        let state = (end.velocity.to_bits(), end.mode);
+        let state = (state_key, end.mode);
         if let Some(back) = recent.iter().rev().position(|s| *s == state) {
+            cycle = back as u64 + 1;
             let cycle = back + 1;
             let spread = |xs: &[f64]| {
                 let tail = &xs[xs.len() - cycle..];
@@ -374,6 +399,7 @@ where
         boundary_velocities,
         run_away,
         converged_by,
+        cycle,
     })
 }
 

@@ -364,6 +364,51 @@ impl Characteristic {
     }
 }
 
+/// The two forces a characteristic gives for comparing a drive with a
+/// force measurement (the paper's section 5): the stall force (the weight
+/// method) and what a start-up measurement reports (the Newton method).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReferenceForces {
+    /// The stall force (module docs, `stall`).
+    pub stall: Stall,
+    /// The start-up force (`transient`); `None` when the run from rest
+    /// shows no start-up.
+    pub transient: Option<TransientForce>,
+    /// The holding force at rest, `mu_0 F_c` (N).
+    pub holding_force: f64,
+}
+
+/// The stall force and the start-up force of `scene`, exactly as
+/// [`characteristic`] finds them, without sampling the curve: the zero
+/// load, the stall search and one start-up run.
+pub fn reference_forces(scene: &Scene) -> Result<ReferenceForces, CharacteristicError> {
+    crate::simulation::prescribed_only(scene, "characteristic")?;
+    let motor = scene.motor;
+    if motor.mu_static <= 0.0 {
+        return Err(ParamError::out_of_range(
+            "motor.mu_static",
+            motor.mu_static,
+            "must be positive for a stall force: without static friction no load is held",
+        )
+        .into());
+    }
+    let holding_force = motor.mu_static * motor.contact_force;
+    let ev = Evaluator::new(scene);
+    let no_load = ev.at(0.0, Purpose::Sampling)?;
+    if !no_load.is_steady() {
+        return Err(CharacteristicError::NoSteadyState {
+            load: 0.0,
+            regime: no_load.regime,
+        });
+    }
+    let found = stall::find(&ev, no_load, holding_force, LIMIT_TOLERANCE * holding_force)?;
+    Ok(ReferenceForces {
+        stall: found.stall,
+        transient: transient::transient_force(&ev)?,
+        holding_force,
+    })
+}
+
 /// The characteristic of `scene` (module docs).
 pub fn characteristic(
     scene: &Scene,

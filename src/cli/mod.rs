@@ -26,6 +26,7 @@
 //!   `crate::interrupt`, installed by [`main`]), leaving no partial or
 //!   temporary file.
 
+mod bench;
 mod characteristic;
 mod check;
 mod compare;
@@ -75,6 +76,9 @@ enum Command {
     /// The force-velocity characteristic: v_inf against the load, stall
     /// force, holding force, output power, datasheet block.
     Characteristic(characteristic::CharacteristicArgs),
+    /// The spring method against stiffness, tied and free-ended, beside the
+    /// stall force (weight method) and the start-up force (Newton method).
+    Bench(bench::BenchArgs),
     /// The best rod signal of n harmonics at the scene's stroke and f_max,
     /// written as a runnable scene.
     Optimize(optimize::OptimizeArgs),
@@ -131,6 +135,7 @@ where
         Some(Command::Characteristic(args)) => {
             characteristic::characteristic(args, streams).map(|()| 0)
         }
+        Some(Command::Bench(args)) => bench::bench(args, streams).map(|()| 0),
         Some(Command::Optimize(args)) => optimize::optimize(args, streams).map(|()| 0),
     };
     match outcome {

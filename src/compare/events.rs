@@ -184,7 +184,10 @@ pub(crate) fn exact_events(
                 EventKind::SlipToStick => EventClass::SlipToStick,
                 EventKind::Reversal { to } => EventClass::Reversal(to),
                 EventKind::Grazing { then: Mode::Stick } => EventClass::SlipToStick,
-                EventKind::Grazing { .. } | EventKind::Jump { .. } => return None,
+                EventKind::Grazing { .. }
+                | EventKind::Jump { .. }
+                | EventKind::ContactStart
+                | EventKind::ContactEnd => return None,
             };
             (t >= from && t <= to).then_some(TimedEvent { t, class })
         })

@@ -207,11 +207,5 @@ pub(crate) fn evaluate(
 
 /// The short name of an event kind, as in the `event_log` of `run --json`.
 pub(crate) fn event_name(kind: &EventKind) -> &'static str {
-    match kind {
-        EventKind::StickToSlip { .. } => "stick_to_slip",
-        EventKind::SlipToStick => "slip_to_stick",
-        EventKind::Reversal { .. } => "reversal",
-        EventKind::Grazing { .. } => "grazing",
-        EventKind::Jump { .. } => "jump",
-    }
+    kind.name()
 }

@@ -20,7 +20,7 @@
 
 use crate::error::SimulationError;
 use crate::signal::Signal;
-pub use driven::{DriveProfile, DrivenEngine, DrivenState};
+pub use driven::{DriveProfile, DrivenEngine, DrivenState, SliderState, SpringProfile};
 pub use event::{EventEngine, EventOptions};
 pub use fixed_step::{FixedStepEngine, FixedStepOptions};
 pub use observer::{Observer, PeriodEnd};
@@ -100,6 +100,12 @@ pub enum EventKind {
         /// The mode after the touch (`Stick` unless `mu_d = mu_0`).
         then: Mode,
     },
+    /// The slider met the free end of a spring (`[spring] tied = false`,
+    /// docs/model.md section 17): the spring's compression rose from zero.
+    ContactStart,
+    /// The slider left the free end of the spring: its compression fell
+    /// back to zero.
+    ContactEnd,
     /// The rod position and velocity jumped (ideal signals).
     Jump {
         /// Rod position change (m).
@@ -113,8 +119,8 @@ pub enum EventKind {
 
 impl EventKind {
     /// Stable name in reports and logs (docs/interface.md): `stick_to_slip`,
-    /// `slip_to_stick`, `reversal`, `grazing`, `jump`; the same names as the
-    /// keys of the event counts.
+    /// `slip_to_stick`, `reversal`, `grazing`, `jump`, `contact_start`,
+    /// `contact_end`; the same names as the keys of the event counts.
     pub fn name(&self) -> &'static str {
         match self {
             EventKind::StickToSlip { .. } => "stick_to_slip",
@@ -122,7 +128,15 @@ impl EventKind {
             EventKind::Reversal { .. } => "reversal",
             EventKind::Grazing { .. } => "grazing",
             EventKind::Jump { .. } => "jump",
+            EventKind::ContactStart => "contact_start",
+            EventKind::ContactEnd => "contact_end",
         }
+    }
+
+    /// True for the events of a spring's free end, which change what acts
+    /// on the slider but not its friction mode.
+    pub fn is_contact(&self) -> bool {
+        matches!(self, EventKind::ContactStart | EventKind::ContactEnd)
     }
 }
 
@@ -150,6 +164,10 @@ pub struct EventCounts {
     pub grazing: u64,
     /// Rod jumps.
     pub jump: u64,
+    /// The slider met a spring's free end.
+    pub contact_start: u64,
+    /// The slider left a spring's free end.
+    pub contact_end: u64,
 }
 
 impl EventCounts {
@@ -161,12 +179,20 @@ impl EventCounts {
             EventKind::Reversal { .. } => self.reversal += 1,
             EventKind::Grazing { .. } => self.grazing += 1,
             EventKind::Jump { .. } => self.jump += 1,
+            EventKind::ContactStart => self.contact_start += 1,
+            EventKind::ContactEnd => self.contact_end += 1,
         }
     }
 
     /// All events.
     pub fn total(&self) -> u64 {
-        self.stick_to_slip + self.slip_to_stick + self.reversal + self.grazing + self.jump
+        self.stick_to_slip
+            + self.slip_to_stick
+            + self.reversal
+            + self.grazing
+            + self.jump
+            + self.contact_start
+            + self.contact_end
     }
 
     /// Sum of two counts.
@@ -177,6 +203,8 @@ impl EventCounts {
             reversal: self.reversal + other.reversal,
             grazing: self.grazing + other.grazing,
             jump: self.jump + other.jump,
+            contact_start: self.contact_start + other.contact_start,
+            contact_end: self.contact_end + other.contact_end,
         }
     }
 }
@@ -344,6 +372,18 @@ pub trait PeriodEngine {
     /// the last period ended in; `None` otherwise (and before the first
     /// period).
     fn boundary_state(&self) -> Option<DrivenState> {
+        None
+    }
+
+    /// For an engine with a spring against the slider: what the spring
+    /// reads over the `periods` periods whose segments and events (in
+    /// order) are given, starting from `start`; `None` otherwise.
+    fn spring_profile(
+        &self,
+        _start: &DrivenState,
+        _recorded: (&[Segment], &[Event]),
+        _periods: u64,
+    ) -> Option<SpringProfile> {
         None
     }
 

@@ -62,6 +62,7 @@
 //! atomically (temporary file and rename) into an existing directory.
 
 mod axes;
+pub mod bench;
 mod canvas;
 pub mod characteristic;
 mod colorbar;

@@ -20,8 +20,8 @@ use super::motion::{self, Row, Span};
 use super::performance::{GridPoint, figures6_7};
 use super::sweep::{SweepSpec, sweep_figure_from};
 use super::{
-    Figure, PlotError, Preset, characteristic, compare, driven, optimize, precision, scaling,
-    signals, timeline,
+    Figure, PlotError, Preset, bench, characteristic, compare, driven, optimize, precision,
+    scaling, signals, timeline,
 };
 use crate::motor::Motor;
 use crate::optimize::map::{self, MapGrid};
@@ -76,6 +76,9 @@ pub const ALL: &[Entry] = &[
     }),
     entry("characteristic_default", |_| {
         characteristic::scene_characteristic(&Scene::default(), "characteristic_default")
+    }),
+    entry("bench_default", |_| {
+        bench::figure(bench_default()?, &Scene::default(), "bench_default")
     }),
     entry("optimize_signal", |_| {
         optimize::signal_figure(optimum()?, "optimize_signal")
@@ -254,6 +257,19 @@ fn optimum() -> Result<&'static Optimum, PlotError> {
     });
     found.as_ref().map_err(|e| PlotError::Data {
         figure: "optimize".to_owned(),
+        reason: e.clone(),
+    })
+}
+
+/// The bench of the default scene with the default options, computed once.
+fn bench_default() -> Result<&'static crate::bench::Bench, PlotError> {
+    static BENCH: OnceLock<Result<crate::bench::Bench, String>> = OnceLock::new();
+    let found = BENCH.get_or_init(|| {
+        crate::bench::bench(&Scene::default(), &crate::bench::BenchOptions::default())
+            .map_err(|e| e.to_string())
+    });
+    found.as_ref().map_err(|e| PlotError::Data {
+        figure: "bench_default".to_owned(),
         reason: e.clone(),
     })
 }

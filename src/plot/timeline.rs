@@ -124,6 +124,8 @@ fn event_name(kind: &EventKind) -> &'static str {
         } => "reversal_to_backward",
         EventKind::Grazing { .. } => "grazing",
         EventKind::Jump { .. } => "jump",
+        EventKind::ContactStart => "contact_start",
+        EventKind::ContactEnd => "contact_end",
     }
 }
 

@@ -20,13 +20,17 @@ use crate::scene::SceneFile;
 use crate::sensitivity::{Derivative, Sensitivities};
 
 mod driven;
+mod spring;
+mod unsettled;
 
 use crate::signal::Held;
-use crate::simulation::{CertificateKind, Outcome, RunReport, RunTimes, Unsettled};
+use crate::simulation::{CertificateKind, Outcome, RunReport, RunTimes};
 use driven::drive_figures;
 pub(crate) use driven::{actuator_sensitivities_text, add_actuator_sensitivities_json};
 use serde_json::{Map, Value, json};
+use spring::{add_spring_json, spring_text};
 use std::fmt::Write as _;
+use unsettled::{unsettled_json, unsettled_text};
 
 /// `value` rounded to the digits its absolute error `err` supports (15
 /// significant digits without an estimate), then `± err`; an error of 0
@@ -150,57 +154,6 @@ fn direction_name(d: Direction) -> &'static str {
     }
 }
 
-/// Without a steady state the keys of one keep their place with `null`
-/// (the event counts of a start-up and of a steady period, the fixed-point
-/// work, the verification), so that every outcome has the same keys.
-fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled, verify: bool) {
-    let mut err = Map::new();
-    for indicator in &u.requested {
-        m.insert(indicator.name().into(), Value::Null);
-        err.insert(indicator.name().into(), Value::Null);
-    }
-    m.insert("last_v_p".into(), option_number(u.last_v_p));
-    m.insert("final_velocity".into(), number(u.final_velocity));
-    m.insert(
-        "v_inf_bounds".into(),
-        json!([
-            option_number(u.v_inf_bounds.0),
-            option_number(u.v_inf_bounds.1)
-        ]),
-    );
-    m.insert("period".into(), number(u.period));
-    m.insert("f0".into(), number(1.0 / u.period));
-    m.insert("f_max".into(), option_number(u.f_max));
-    m.insert("periods_simulated".into(), json!(u.periods_simulated));
-    m.insert(
-        "steady_state_certificate".into(),
-        match u.certificate_evaluations {
-            Some(_) => json!("covering"),
-            None => Value::Null,
-        },
-    );
-    m.insert("other_fixed_point_distance".into(), Value::Null);
-    m.insert("events".into(), Value::Null);
-    m.insert("events_per_steady_period".into(), Value::Null);
-    if verify {
-        m.insert("v_inf_transient".into(), Value::Null);
-        m.insert("steady_state_check".into(), Value::Null);
-    }
-    m.insert("error_estimate".into(), Value::Object(err));
-    m.insert(
-        "work".into(),
-        json!({
-            "periods": u.work.periods,
-            "events": u.work.events.total(),
-            "evaluations": u.work.evaluations,
-            "root_iterations": u.work.root_iterations,
-            "fixed_point_iterations": Value::Null,
-            "map_evaluations": Value::Null,
-            "certificate_evaluations": u.certificate_evaluations,
-        }),
-    );
-}
-
 fn steady_json(m: &mut Map<String, Value>, r: &RunReport) {
     let ind = &r.indicators;
     let mut err = Map::new();
@@ -234,6 +187,9 @@ fn steady_json(m: &mut Map<String, Value>, r: &RunReport) {
         for (key, value) in drive_figures(d) {
             m.insert(key.into(), number(value));
         }
+    }
+    if let Some(s) = &r.spring {
+        add_spring_json(m, s);
     }
     if let Some(check) = &r.steady_state_check {
         // The cross-check of run.verify_steady_state: the start-up's own
@@ -405,40 +361,29 @@ pub fn to_text(outcome: &Outcome) -> String {
             let _ = writeln!(
                 out,
                 "outcome: not converged: the start-up from rest did not establish its limit \
-                 within {} (run.max_periods); v_inf is not reported",
+                 within {} (run.max_periods){}",
                 crate::plural::count(state.periods_simulated, "period", "periods"),
+                if state.spring.is_some() {
+                    ""
+                } else {
+                    "; v_inf is not reported"
+                },
             );
-            let bound =
-                |b: Option<f64>| b.map_or("unknown".to_owned(), |v| format_with_error(v, None));
-            let _ = writeln!(
-                out,
-                "  v_inf lies between {} and {} m/s",
-                bound(state.v_inf_bounds.0),
-                bound(state.v_inf_bounds.1)
-            );
+            // Against a spring there is no travel to bound.
+            if state.spring.is_none() {
+                let bound =
+                    |b: Option<f64>| b.map_or("unknown".to_owned(), |v| format_with_error(v, None));
+                let _ = writeln!(
+                    out,
+                    "  v_inf lies between {} and {} m/s",
+                    bound(state.v_inf_bounds.0),
+                    bound(state.v_inf_bounds.1)
+                );
+            }
             unsettled_text(&mut out, state, outcome.times());
             out
         }
     }
-}
-
-fn unsettled_text(out: &mut String, state: &Unsettled, times: RunTimes) {
-    if let Some(v) = state.last_v_p {
-        let _ = writeln!(
-            out,
-            "  last mean velocity v_p = {} m/s (period {})",
-            format_with_error(v, None),
-            state.periods_simulated
-        );
-    }
-    let _ = writeln!(out, "indicators: none (no steady state)");
-    cost_line(
-        out,
-        state.work.periods,
-        state.work.events.total(),
-        state.work.root_iterations,
-        times,
-    );
 }
 
 fn steady_text(r: &RunReport) -> String {
@@ -507,6 +452,9 @@ fn steady_text(r: &RunReport) -> String {
             line(&mut out, key, format_with_error(value, None), unit);
         }
     }
+    if let Some(s) = &r.spring {
+        spring_text(&mut out, s);
+    }
     if let Some(check) = &r.steady_state_check {
         let tr = check
             .v_inf_transient
@@ -559,8 +507,13 @@ fn steady_text(r: &RunReport) -> String {
         ),
         CertificateKind::Attracted => writeln!(
             out,
-            "limit from rest: the fixed point of the period map on (x_R, v_R, v_S) by Newton, \
-             the start-up followed into its attraction ({} periods)",
+            "limit from rest: the fixed point of the period map on {} by Newton, the start-up \
+             followed into its attraction ({} periods)",
+            if r.spring.is_some() {
+                "(x_S, v_S)"
+            } else {
+                "(x_R, v_R, v_S)"
+            },
             r.transient.as_ref().map_or(0, |t| t.periods())
         ),
     };

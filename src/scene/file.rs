@@ -2,6 +2,7 @@
 //! checked) and its conversion to and from a validated [`Scene`].
 
 use super::actuator_table::{ActuatorTable, VoltageTable, actuator_of, actuator_table};
+use super::spring_table::{SpringTable, spring_of, spring_table};
 use super::{EngineKind, Outputs, RunSettings, Scene};
 use crate::actuator::GivenVoltage;
 use crate::error::{Num, ParamError};
@@ -29,6 +30,9 @@ pub struct SceneFile {
     /// signal.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub voltage: Option<VoltageTable>,
+    /// `[spring]`; `None`: no spring against the slider.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spring: Option<SpringTable>,
     /// `[run]`; `None`: default run settings.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub run: Option<RunTable>,
@@ -199,13 +203,15 @@ impl TryFrom<SceneFile> for Scene {
             _ => SignalSpec::paper_default(),
         };
         let run = run_settings(file.run)?;
-        let outputs = outputs(file.outputs, &signal, actuator.as_ref())?;
+        let spring = spring_of(file.spring)?;
+        let outputs = outputs(file.outputs, &signal, actuator.as_ref(), spring.is_some())?;
         let scene = Scene {
             motor,
             signal,
             actuator,
             rod,
             voltage,
+            spring,
             run,
             outputs,
         };
@@ -267,6 +273,7 @@ impl From<&Scene> for SceneFile {
                 phases: v.phases.clone(),
                 offset: v.offset,
             }),
+            spring: spring_table(scene.spring.as_ref()),
             run: Some(RunTable {
                 engine: Some(scene.run.engine),
                 steps_per_harmonic: Some(i64::from(scene.run.steps_per_harmonic)),
@@ -523,6 +530,7 @@ fn outputs(
     table: Option<OutputsTable>,
     signal: &SignalSpec,
     actuator: Option<&ActuatorParams>,
+    spring: bool,
 ) -> Result<Outputs, ParamError> {
     let t = table.unwrap_or(OutputsTable {
         indicators: None,
@@ -530,7 +538,7 @@ fn outputs(
         events: None,
     });
     let indicators = match t.indicators {
-        None => Indicator::available(signal, actuator),
+        None => Indicator::available(signal, actuator, spring),
         Some(names) => names
             .iter()
             .map(|name| {

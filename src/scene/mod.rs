@@ -113,6 +113,7 @@
 mod actuator_table;
 mod file;
 mod overrides;
+mod spring_table;
 mod toml_error;
 mod warnings;
 
@@ -127,6 +128,7 @@ use crate::indicator::Indicator;
 use crate::motor::{Motor, MotorParams};
 use crate::power::ActuatorParams;
 use crate::signal::{Signal, SignalSpec};
+use crate::spring::Spring;
 use serde::{Deserialize, Serialize};
 use std::io::Read;
 use std::path::Path;
@@ -325,6 +327,9 @@ pub struct Scene {
     /// ([`GivenVoltage::response`], set by [`Scene::set_voltage`]).
     /// `None`: a driven rod's voltage is designed from `signal`.
     pub voltage: Option<GivenVoltage>,
+    /// A spring against the slider (`[spring]`, docs/model.md section
+    /// 17): the spring method of measuring the motor's force.
+    pub spring: Option<Spring>,
     /// How to run (`[run]`).
     pub run: RunSettings,
     /// What to report (`[outputs]`).
@@ -342,6 +347,7 @@ impl Default for Scene {
             actuator: Some(ActuatorParams::default()),
             rod: RodModel::Prescribed,
             voltage: None,
+            spring: None,
             run: RunSettings::default(),
             outputs: Outputs {
                 indicators: Indicator::ALL.to_vec(),
@@ -501,6 +507,7 @@ impl Scene {
                     .to_owned(),
             });
         }
+        self.check_spring()?;
         if let RodModel::Driven(spec) = &self.rod {
             check_driven(&self.signal, self.actuator.as_ref(), spec)?;
             check_driven_rates(&self.signal, self.actuator.as_ref(), spec, &self.motor)?;
@@ -536,9 +543,11 @@ impl Scene {
                     reason: format!("lists \"{indicator}\" more than once"),
                 });
             }
-            if let Some(reason) =
-                indicator.unavailable_because(&self.signal, self.actuator.as_ref())
-            {
+            if let Some(reason) = indicator.unavailable_because(
+                &self.signal,
+                self.actuator.as_ref(),
+                self.spring.is_some(),
+            ) {
                 return Err(ParamError::Inconsistent {
                     field: "outputs.indicators".to_owned(),
                     reason: reason.to_owned(),
@@ -550,6 +559,34 @@ impl Scene {
 }
 
 impl Scene {
+    /// A spring needs a continuous signal (the exact engine's closed forms
+    /// of a rod that follows a Fourier series) and, for now, a prescribed
+    /// rod; its fields are checked by [`Spring::validate`].
+    fn check_spring(&self) -> Result<(), ParamError> {
+        let Some(spring) = &self.spring else {
+            return Ok(());
+        };
+        spring.validate()?;
+        if matches!(self.signal, SignalSpec::Ideal(_)) {
+            return Err(ParamError::Inconsistent {
+                field: "spring".to_owned(),
+                reason: "needs a continuous signal (signal.kind = \"fourier\" or \"harmonics\"): \
+                         the ideal signal's jumps would strike the spring"
+                    .to_owned(),
+            });
+        }
+        if matches!(self.rod, RodModel::Driven(_)) {
+            return Err(ParamError::Inconsistent {
+                field: "spring".to_owned(),
+                reason: "with a driven rod (actuator.rod = \"driven\") is not available: its \
+                         slip would hold two oscillators (the rod's and the slider's) in one \
+                         event function; use a prescribed rod"
+                    .to_owned(),
+            });
+        }
+        Ok(())
+    }
+
     /// A `[voltage]` needs a driven rod and the `[actuator]` it drives; a
     /// voltage's response as the signal needs its `[voltage]`.
     fn check_voltage(&self) -> Result<(), ParamError> {

@@ -155,7 +155,9 @@ fn record_period(
                     Some(EventKind::Grazing { then }) => End::Grazing(then),
                     Some(EventKind::StickToSlip { to }) => End::BandExit(to),
                     Some(EventKind::Jump { .. }) => End::Jump,
-                    None => End::Period,
+                    // A spring's free end: not a scene these derivatives
+                    // take (a prescribed rod without a spring).
+                    Some(EventKind::ContactStart | EventKind::ContactEnd) | None => End::Period,
                 };
                 pieces.push(Piece {
                     start: s.start,

@@ -55,6 +55,7 @@ pub(super) struct Selection {
 fn kinds(events: &[Event]) -> Vec<(&'static str, Mode)> {
     events
         .iter()
+        .filter(|e| !e.kind.is_contact())
         .map(|e| match e.kind {
             EventKind::StickToSlip { to } | EventKind::Reversal { to } => {
                 (e.kind.name(), Mode::Slip(to))
@@ -63,6 +64,7 @@ fn kinds(events: &[Event]) -> Vec<(&'static str, Mode)> {
                 ("slip_to_stick", Mode::Stick)
             }
             EventKind::Grazing { then } | EventKind::Jump { then, .. } => (e.kind.name(), then),
+            EventKind::ContactStart | EventKind::ContactEnd => (e.kind.name(), Mode::Stick),
         })
         .collect()
 }

@@ -134,6 +134,15 @@ impl<E: PeriodEngine> PeriodEngine for TimeBudget<E> {
         self.engine.boundary_state()
     }
 
+    fn spring_profile(
+        &self,
+        start: &crate::engine::DrivenState,
+        recorded: (&[crate::engine::Segment], &[crate::engine::Event]),
+        periods: u64,
+    ) -> Option<crate::engine::SpringProfile> {
+        self.engine.spring_profile(start, recorded, periods)
+    }
+
     fn restart_from(&mut self, state: crate::engine::DrivenState) -> bool {
         self.engine.restart_from(state)
     }

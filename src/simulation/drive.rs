@@ -4,6 +4,7 @@
 
 use super::certified::{Search, bracketed_v_inf, certified_limit, covering_search};
 use super::driven::Settle;
+use super::spring_reading::{orbit_periods, orbit_reading, unlocked_reading};
 use super::{
     CertificateKind, Outcome, RunReport, SteadyStateCertificate, SteadyStateCheck, Unsettled,
 };
@@ -123,6 +124,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                             setup_time,
                             simulation_time: clock.elapsed(),
                             wall_time: setup_time + clock.elapsed(),
+                            spring: None,
                         };
                         let direction = if growing {
                             Direction::Forward
@@ -232,8 +234,11 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                 options.ratio_rule = ratio_rule;
                 event_log = scene.outputs.events.then(EventLog::default);
                 trajectory = scene.outputs.trajectory.then(Trajectory::default);
-                let mut settle =
-                    rod.map(|rod| Settle::new(rod, motor, &signal, !verify, needs_startup));
+                // Newton on the period map where the engine can start a
+                // period from any boundary state: a driven rod, or a slider
+                // on a spring.
+                let mut settle = (rod.is_some() || scene.spring.is_some())
+                    .then(|| Settle::new(rod, motor, &signal, !verify, needs_startup));
                 let transient = match settle.as_mut() {
                     Some(settle) => analysis::transient_until(
                         &mut engine,
@@ -245,14 +250,25 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                     None => analysis::transient(&mut engine, &options, wanted, &mut event_log)?,
                 };
                 if transient.run_away.is_some() || !transient.converged {
-                    return Ok(unsettled(
+                    // A slider on a spring that did not lock: what the
+                    // spring reads over the periods that follow.
+                    let reading = if transient.run_away.is_none() && scene.spring.is_some() {
+                        unlocked_reading(&mut engine, transient.periods())?
+                    } else {
+                        None
+                    };
+                    let mut outcome = unsettled(
                         &engine,
                         &signal,
                         &requested,
                         &transient,
                         rest_fixed_point,
                         (setup_time, clock.elapsed()),
-                    ));
+                    );
+                    if let Outcome::NotConverged(state) = &mut outcome {
+                        state.spring = reading;
+                    }
+                    return Ok(outcome);
                 }
                 if let Some(settle) = &settle {
                     map_evaluations += settle.evaluations;
@@ -395,6 +411,16 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
     } else {
         None
     };
+    // A spring against the slider: what it reads over the orbit.
+    let spring = if rod_state && engine.boundary_state().is_some_and(|z| z.slider.is_some()) {
+        let periods = transient
+            .as_ref()
+            .map_or(1, |t| orbit_periods(t, signal.velocity_scale()));
+        map_evaluations += periods;
+        orbit_reading(&mut engine, periods)?
+    } else {
+        None
+    };
     let (drive, driven_period) = match drive {
         Some((profile, segments)) => (Some(profile), Some(segments)),
         None => (None, None),
@@ -476,6 +502,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         steady,
         drive,
         driven_period,
+        spring,
     })))
 }
 
@@ -537,6 +564,7 @@ fn unsettled<E: PeriodEngine>(
         setup_time,
         simulation_time,
         wall_time: setup_time + simulation_time,
+        spring: None,
     };
     match transient.run_away {
         Some(direction) => Outcome::RunAway { direction, state },

@@ -59,7 +59,7 @@ use crate::error::SimulationError;
 use crate::motor::Motor;
 use crate::observer::Trajectory;
 use crate::signal::Signal;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{DMatrix, DVector};
 use std::collections::VecDeque;
 
 /// Periods with the same event counts before Newton is tried.
@@ -84,7 +84,7 @@ pub(crate) struct FixedPoint {
     /// The boundary state, with the mode the period ends in.
     pub state: DrivenState,
     /// `dP/dz` there.
-    pub jacobian: Matrix3<f64>,
+    pub jacobian: DMatrix<f64>,
     /// The spectral radius of `dP/dz`.
     pub radius: f64,
     /// Events of the period from it.
@@ -96,10 +96,10 @@ pub(crate) struct FixedPoint {
     /// The last correction of the slider's velocity (m/s).
     pub last_correction: f64,
     /// `|P(z) - z|` of the last evaluation, componentwise.
-    pub residual: Vector3<f64>,
+    pub residual: DVector<f64>,
     /// The window `m` and `J^m` in scaled coordinates.
     window: usize,
-    power: Matrix3<f64>,
+    power: DMatrix<f64>,
     /// `max_(j <= m) ||J^j||`, scaled: how far a deviation may grow on
     /// its way in.
     reach: f64,
@@ -107,10 +107,13 @@ pub(crate) struct FixedPoint {
 
 /// The start-up's test for a driven rod ([`crate::analysis::transient_until`]).
 pub(crate) struct Settle<'a> {
-    rod: &'a DrivenRod,
+    /// The driven rod (its exact Jacobian); `None`: a slider on a spring
+    /// against a rod that follows its signal (a Jacobian by differences).
+    rod: Option<&'a DrivenRod>,
     motor: &'a Motor,
     period: f64,
-    scales: Vector3<f64>,
+    /// `(x, v)` scales: the stroke and the largest rod velocity.
+    scale: (f64, f64),
     /// False: the fixed point is found, the start-up is never stopped.
     accept: bool,
     /// Also wait for `p_0.99`.
@@ -121,15 +124,41 @@ pub(crate) struct Settle<'a> {
     last_events: Option<EventCounts>,
     next_try: u64,
     /// Deviations of the last periods from the fixed point, scaled.
-    deviations: VecDeque<Vector3<f64>>,
+    deviations: VecDeque<DVector<f64>>,
     /// The fixed point, once found.
     pub fixed: Option<FixedPoint>,
     /// Periods run by Newton.
     pub evaluations: u64,
 }
 
-fn vector(z: &DrivenState) -> Vector3<f64> {
-    Vector3::new(z.rod_x, z.rod_v, z.slider_v)
+/// The coordinates of the period map: the rod's state and the slider's
+/// velocity for a driven rod, the slider's position and velocity for a
+/// slider on a spring (its rod follows the signal, the same at every
+/// period start).
+fn vector(z: &DrivenState) -> DVector<f64> {
+    match z.slider {
+        Some(p) => DVector::from_vec(vec![p.x, z.slider_v]),
+        None => DVector::from_vec(vec![z.rod_x, z.rod_v, z.slider_v]),
+    }
+}
+
+/// `z` with its coordinates set to `c` ([`vector`]) and its mode `mode`.
+fn with_coordinates(z: &DrivenState, c: &DVector<f64>, mode: crate::engine::Mode) -> DrivenState {
+    match z.slider {
+        Some(p) => DrivenState {
+            slider_v: c[1],
+            mode,
+            slider: Some(crate::engine::SliderState { x: c[0], ..p }),
+            ..*z
+        },
+        None => DrivenState {
+            rod_x: c[0],
+            rod_v: c[1],
+            slider_v: c[2],
+            mode,
+            ..*z
+        },
+    }
 }
 
 impl<'a> Settle<'a> {
@@ -137,7 +166,7 @@ impl<'a> Settle<'a> {
     /// false only finds the fixed point; `startup`: the start-up also runs
     /// to `p_0.99`.
     pub(super) fn new(
-        rod: &'a DrivenRod,
+        rod: Option<&'a DrivenRod>,
         motor: &'a Motor,
         signal: &Signal,
         accept: bool,
@@ -149,7 +178,7 @@ impl<'a> Settle<'a> {
             rod,
             motor,
             period: signal.period(),
-            scales: Vector3::new(x, v, v),
+            scale: (x, v),
             accept,
             startup,
             reached_startup: false,
@@ -160,6 +189,15 @@ impl<'a> Settle<'a> {
             deviations: VecDeque::new(),
             fixed: None,
             evaluations: 0,
+        }
+    }
+
+    /// The scales of `z`'s coordinates ([`vector`]).
+    fn scales(&self, z: &DrivenState) -> DVector<f64> {
+        let (x, v) = self.scale;
+        match z.slider {
+            Some(_) => DVector::from_vec(vec![x, v]),
+            None => DVector::from_vec(vec![x, v, v]),
         }
     }
 
@@ -199,8 +237,8 @@ impl<'a> Settle<'a> {
             self.deviations.clear();
             return Ok(None);
         }
-        let e = (vector(&z) - vector(&f.state)).component_div(&self.scales);
-        self.deviations.push_back(e);
+        let e = (vector(&z) - vector(&f.state)).component_div(&self.scales(&z));
+        self.deviations.push_back(e.clone());
         if self.deviations.len() > f.window + 1 {
             self.deviations.pop_front();
         }
@@ -209,14 +247,14 @@ impl<'a> Settle<'a> {
         }
         let at = e.norm() <= AT_FIXED_POINT;
         let attracted = self.deviations.len() == f.window + 1 && {
-            let first = self.deviations[0];
-            (e - f.power * first).norm() <= 0.25 * first.norm() + AT_FIXED_POINT
+            let first = &self.deviations[0];
+            (&e - &f.power * first).norm() <= 0.25 * first.norm() + AT_FIXED_POINT
         };
         if !(at || attracted) {
             return Ok(None);
         }
         Ok(Some(Attracted {
-            remaining: f.reach * e.norm() * self.scales[2],
+            remaining: f.reach * e.norm() * self.scale.1,
             v_inf_error: (v_p - f.v_inf).abs(),
         }))
     }
@@ -229,57 +267,48 @@ impl<'a> Settle<'a> {
         engine: &mut E,
         mut z: DrivenState,
     ) -> Result<Option<FixedPoint>, SimulationError> {
+        let scales = self.scales(&z);
+        let n = scales.len();
         for iteration in 1..=NEWTON {
-            engine.restart_from(z);
-            let mut stats = StatsObserver::for_engine(&*engine, StatsWanted::default());
-            let mut recorded = Trajectory::default();
-            let end = engine.run_period(
-                2,
-                PeriodStart {
-                    velocity: z.slider_v,
-                    mode: Some(z.mode),
-                },
-                &mut (&mut stats, &mut recorded),
-            )?;
-            self.evaluations += 1;
-            let Some(p) = engine.boundary_state() else {
+            let Some((p, events, step, segments)) = self.period_from(engine, z)? else {
                 return Ok(None);
             };
-            let Ok(jacobian) = crate::sensitivity::period_map_jacobian(
-                self.rod,
-                self.motor,
-                self.period,
-                &recorded.segments,
-            ) else {
-                return Ok(None);
+            let jacobian = match self.rod {
+                Some(rod) => match crate::sensitivity::period_map_jacobian(
+                    rod,
+                    self.motor,
+                    self.period,
+                    &segments,
+                ) {
+                    Ok(j) => DMatrix::from_fn(3, 3, |r, c| j[(r, c)]),
+                    Err(_) => return Ok(None),
+                },
+                None => match self.differences(engine, &z, &scales, events)? {
+                    Some(j) => j,
+                    None => return Ok(None),
+                },
             };
             let residual = vector(&p) - vector(&z);
-            let Some(dz) = (Matrix3::identity() - jacobian).lu().solve(&residual) else {
+            let Some(dz) = (DMatrix::identity(n, n) - &jacobian).lu().solve(&residual) else {
                 return Ok(None);
             };
             if !dz.iter().all(|d| d.is_finite()) {
                 return Ok(None);
             }
-            let correction = dz.component_div(&self.scales).norm();
-            let next = vector(&z) + dz;
-            z = DrivenState {
-                rod_x: next[0],
-                rod_v: next[1],
-                slider_v: next[2],
-                mode: p.mode,
-            };
+            let correction = dz.component_div(&scales).norm();
+            z = with_coordinates(&p, &(vector(&z) + &dz), p.mode);
             if correction <= CONVERGED {
                 return Ok(self.attracting(FixedPoint {
                     state: z,
                     jacobian,
                     radius: 0.0,
-                    events: stats.last.events,
-                    v_inf: end.step / self.period,
+                    events,
+                    v_inf: step / self.period,
                     iterations: iteration,
-                    last_correction: dz[2].abs(),
+                    last_correction: dz[n - 1].abs(),
                     residual: residual.abs(),
                     window: 0,
-                    power: Matrix3::identity(),
+                    power: DMatrix::identity(n, n),
                     reach: 1.0,
                 }));
             }
@@ -287,11 +316,74 @@ impl<'a> Settle<'a> {
         Ok(None)
     }
 
+    /// One period of the engine from `z`: the state it ends in, its
+    /// events, the slider's step and its segments.
+    #[allow(clippy::type_complexity)]
+    fn period_from<E: PeriodEngine>(
+        &mut self,
+        engine: &mut E,
+        z: DrivenState,
+    ) -> Result<Option<(DrivenState, EventCounts, f64, Vec<crate::engine::Segment>)>, SimulationError>
+    {
+        engine.restart_from(z);
+        let mut stats = StatsObserver::for_engine(&*engine, StatsWanted::default());
+        let mut recorded = Trajectory::default();
+        let end = engine.run_period(
+            2,
+            PeriodStart {
+                velocity: z.slider_v,
+                mode: Some(z.mode),
+            },
+            &mut (&mut stats, &mut recorded),
+        )?;
+        self.evaluations += 1;
+        Ok(engine
+            .boundary_state()
+            .map(|p| (p, stats.last.events, end.step, recorded.segments)))
+    }
+
+    /// `dP/dz` by central differences of the engine's periods, steps of
+    /// `1e-7` of the scales; `None` where a step changes the period's event
+    /// counts (the map is not smooth across them).
+    fn differences<E: PeriodEngine>(
+        &mut self,
+        engine: &mut E,
+        z: &DrivenState,
+        scales: &DVector<f64>,
+        events: EventCounts,
+    ) -> Result<Option<DMatrix<f64>>, SimulationError> {
+        let n = scales.len();
+        let c = vector(z);
+        let mut jacobian = DMatrix::zeros(n, n);
+        for j in 0..n {
+            let h = 1e-7 * scales[j];
+            let mut ends = Vec::with_capacity(2);
+            for sign in [1.0, -1.0] {
+                let mut shifted = c.clone();
+                shifted[j] += sign * h;
+                let Some((p, e, ..)) =
+                    self.period_from(engine, with_coordinates(z, &shifted, z.mode))?
+                else {
+                    return Ok(None);
+                };
+                if e != events || p.mode != z.mode {
+                    return Ok(None);
+                }
+                ends.push(vector(&p));
+            }
+            let column = (&ends[0] - &ends[1]) / (2.0 * h);
+            jacobian.set_column(j, &column);
+        }
+        Ok(Some(jacobian))
+    }
+
     /// `f` with its spectral radius and window, if it attracts: the
     /// spectral radius below 1 and `||J^m|| <= 1/2` for some `m <=`
     /// [`WINDOW`].
     fn attracting(&self, mut f: FixedPoint) -> Option<FixedPoint> {
-        let scaled = Matrix3::from_fn(|r, c| f.jacobian[(r, c)] * self.scales[c] / self.scales[r]);
+        let scales = self.scales(&f.state);
+        let n = scales.len();
+        let scaled = DMatrix::from_fn(n, n, |r, c| f.jacobian[(r, c)] * scales[c] / scales[r]);
         f.radius = scaled
             .complex_eigenvalues()
             .iter()
@@ -300,9 +392,9 @@ impl<'a> Settle<'a> {
         if f.radius.is_nan() || f.radius >= 1.0 {
             return None;
         }
-        let mut power = Matrix3::identity();
+        let mut power = DMatrix::identity(n, n);
         for m in 1..=WINDOW {
-            power = scaled * power;
+            power = &scaled * power;
             let norm = power.norm();
             f.reach = f.reach.max(norm);
             if norm <= 0.5 {
@@ -324,13 +416,23 @@ impl<'a> Settle<'a> {
         u: f64,
         events: u64,
     ) -> f64 {
-        let Some(g) = (Matrix3::identity() - f.jacobian).try_inverse() else {
+        let n = f.jacobian.nrows();
+        let Some(g) = (DMatrix::identity(n, n) - &f.jacobian).try_inverse() else {
             return f64::INFINITY;
         };
         let rounding_v = rounding_velocity_of(signal, events);
         let rounding_x = 8.0 * f64::EPSILON * (events as f64 + 2.0) * signal.position_scale();
-        let share = self.motor.params().slider_mass / self.rod.real().mass;
-        let delta = Vector3::new(rounding_x, rounding_v + share * u, rounding_v + u) + f.residual;
-        (0..3).map(|j| g[(2, j)].abs() * delta[j]).sum()
+        let mut delta = match self.rod {
+            // The rod gets the share m_s / M of the slider's velocity error.
+            Some(rod) => {
+                let share = self.motor.params().slider_mass / rod.real().mass;
+                DVector::from_vec(vec![rounding_x, rounding_v + share * u, rounding_v + u])
+            }
+            // A slider on a spring: its position carries the velocity
+            // error over the period at most.
+            None => DVector::from_vec(vec![rounding_x + u * signal.period(), rounding_v + u]),
+        };
+        delta += &f.residual;
+        (0..n).map(|j| g[(n - 1, j)].abs() * delta[j]).sum()
     }
 }

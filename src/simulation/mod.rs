@@ -94,11 +94,12 @@ mod certified;
 mod drive;
 mod driven;
 mod outcome;
+mod spring_reading;
 
 pub use crate::analysis::ErrorEstimate;
 pub use cache::SignalCache;
 pub use outcome::{
-    CertificateKind, Outcome, Regime, RunReport, RunTimes, SteadyStateCertificate,
+    CertificateKind, Outcome, Regime, RunReport, RunTimes, SpringReading, SteadyStateCertificate,
     SteadyStateCheck, Unsettled,
 };
 
@@ -185,6 +186,36 @@ pub(super) fn simulate_built(
     clock: Instant,
 ) -> Result<Outcome, Error> {
     let mut outcome = match (&scene.rod, scene.run.engine) {
+        // A spring against the slider: the exact engine's closed forms of a
+        // rod that follows its signal (Scene::validate refuses a driven rod
+        // and a discontinuous signal with a spring).
+        (RodModel::Prescribed, EngineKind::Event) if scene.spring.is_some() => {
+            let spring = scene.spring.expect("a spring");
+            let engine = DrivenEngine::prescribed(
+                signal,
+                motor,
+                event.velocity_tolerance,
+                event.max_events_per_period,
+            )
+            .and_then(|e| e.with_spring(spring, motor))
+            .ok_or_else(|| {
+                Error::Param(ParamError::Inconsistent {
+                    field: "spring".to_owned(),
+                    reason: "needs a continuous signal (fourier or harmonics) and a prescribed rod"
+                        .to_owned(),
+                })
+            })?;
+            simulate_timed(engine, scene, motor, None, clock)?
+        }
+        (RodModel::Prescribed, EngineKind::Fixed) if scene.spring.is_some() => {
+            let options = FixedStepOptions {
+                steps_per_harmonic: scene.run.steps_per_harmonic,
+                ..FixedStepOptions::default()
+            };
+            let spring = scene.spring.expect("a spring");
+            let engine = FixedStepEngine::new(signal, motor, options).with_spring(spring);
+            simulate_timed(engine, scene, motor, None, clock)?
+        }
         (RodModel::Driven(spec), engine) => {
             let rod = driven_rod(scene, spec, signal, motor)?;
             match engine {

@@ -48,6 +48,28 @@ impl SteadyStateCheck {
     }
 }
 
+/// What a spring against the slider reads over the steady orbit
+/// (docs/model.md section 17), or, where no orbit locked, over the last
+/// periods simulated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpringReading {
+    /// The orbit's period in drive periods (1, or `k` for a subharmonic);
+    /// 0 where no orbit of period up to [`SpringReading::searched`]'s `K`
+    /// locked within its `N` periods from rest.
+    pub orbit_periods: u64,
+    /// The periods the reading covers (the orbit's, or the last ones
+    /// simulated).
+    pub periods: u64,
+    /// The spring's force and the slider's position over them.
+    pub profile: crate::engine::SpringProfile,
+    /// Where no orbit locked: the least and largest mean force of a single
+    /// period among them (N).
+    pub mean_range: Option<[f64; 2]>,
+    /// Where no orbit locked: `(K, N)`, the longest orbit looked for and
+    /// the periods simulated from rest.
+    pub searched: Option<(u64, u64)>,
+}
+
 /// How a steady state was established as the limit of the motion from
 /// rest (docs/model.md section 3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -151,6 +173,9 @@ pub struct RunReport {
     /// A driven rod's steady period, segment by segment (the one
     /// [`RunReport::drive`] describes); `None` for a prescribed rod.
     pub driven_period: Option<Vec<Segment>>,
+    /// What a spring against the slider reads over the steady orbit
+    /// (docs/model.md section 17); `None` without a spring.
+    pub spring: Option<SpringReading>,
 }
 
 /// The mode of operation in steady state (Part I of the paper): whether the
@@ -291,6 +316,9 @@ pub struct Unsettled {
     pub simulation_time: Duration,
     /// Everything the run computed.
     pub wall_time: Duration,
+    /// A slider against a spring whose motion did not lock into an orbit:
+    /// the spring's reading over the last periods simulated.
+    pub spring: Option<SpringReading>,
 }
 
 /// The result of a run: every physical outcome.

@@ -321,6 +321,9 @@ fn mode_after(kind: &EventKind) -> Mode {
         EventKind::StickToSlip { to } | EventKind::Reversal { to } => Mode::Slip(to),
         EventKind::SlipToStick => Mode::Stick,
         EventKind::Grazing { then } | EventKind::Jump { then, .. } => then,
+        EventKind::ContactStart | EventKind::ContactEnd => {
+            panic!("the scanned scenes have no spring, so no contact events")
+        }
     }
 }
 

@@ -33,6 +33,7 @@ pub fn event_token(kind: &stickslip::engine::EventKind) -> String {
         EventKind::Reversal { to } => format!("reversal {to:?}"),
         EventKind::Grazing { then } => format!("grazing {then:?}"),
         EventKind::Jump { then, .. } => format!("jump {then:?}"),
+        EventKind::ContactStart | EventKind::ContactEnd => kind.name().to_owned(),
     }
 }
 

@@ -48,40 +48,41 @@
 //! vanishes: the rod follows the signal and the run equals the prescribed
 //! rod's (`tests/driven_rod.rs`).
 
+mod period_engine;
 mod profile;
 mod segment;
+mod slider;
+mod spring_profile;
+mod state;
 
 pub use profile::DriveProfile;
+pub use spring_profile::SpringProfile;
+pub use state::{DrivenState, SliderState};
+use state::{Walk, contact_change};
 
 use super::contact::{Band, Contact, transition};
 use super::{
-    Direction, Event, EventKind, Kinematics, Mode, Observer, PeriodEnd, PeriodEngine, PeriodStart,
-    Segment, WorkCounters,
+    Direction, Event, EventKind, Kinematics, Mode, Observer, PeriodEnd, PeriodStart, Segment,
+    WorkCounters,
 };
 use crate::actuator::{DrivenRod, Load};
 use crate::error::SimulationError;
 use crate::motor::Motor;
+use crate::numerics::exp_trig::ExpTrig;
 use crate::signal::{RodState, Signal};
+use crate::spring::Spring;
 use segment::{ModeFunctions, StickExit};
-
-/// The rod's and the slider's state at a period boundary.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DrivenState {
-    /// Rod position (m).
-    pub rod_x: f64,
-    /// Rod velocity (m/s).
-    pub rod_v: f64,
-    /// Slider velocity (m/s).
-    pub slider_v: f64,
-    /// The mode the period ended in.
-    pub mode: Mode,
-}
+use slider::{SliderMotion, SpringLaw};
 
 /// The exact engine for a rod driven through the actuator.
 #[derive(Debug, Clone)]
 pub struct DrivenEngine<'s> {
     signal: &'s Signal,
-    rod: &'s DrivenRod,
+    /// The driven rod; `None`: the rod follows the signal (a prescribed
+    /// rod with a spring against the slider).
+    rod: Option<&'s DrivenRod>,
+    /// The spring against the slider, if any.
+    spring: Option<SpringLaw>,
     period: f64,
     contact: Contact,
     /// The three modes' functions: forward slip, backward slip, stick.
@@ -124,13 +125,66 @@ impl<'s> DrivenEngine<'s> {
         velocity_tolerance: f64,
         max_events_per_period: u64,
     ) -> Self {
-        let v_scale = signal.velocity_scale().max(f64::MIN_POSITIVE);
-        let period = signal.period();
         let modes = [Load::SlipForward, Load::SlipBackward, Load::Stuck]
             .map(|load| ModeFunctions::new(rod.response(load)));
+        Self::with_modes(
+            signal,
+            Some(rod),
+            modes,
+            motor,
+            (velocity_tolerance, max_events_per_period),
+        )
+    }
+
+    /// The engine for a rod that follows `signal` whatever acts on it (the
+    /// paper's prescribed rod) in the engine's closed forms, for a slider
+    /// against a spring ([`DrivenEngine::with_spring`]). `None` for a
+    /// signal that is not a continuous Fourier series.
+    pub fn prescribed(
+        signal: &'s Signal,
+        motor: &Motor,
+        velocity_tolerance: f64,
+        max_events_per_period: u64,
+    ) -> Option<Self> {
+        let Signal::Fourier(fourier) = signal else {
+            return None;
+        };
+        let response = crate::actuator::ModeResponse::prescribed(fourier);
+        let modes = [0, 1, 2].map(|_| ModeFunctions::new(&response));
+        Some(Self::with_modes(
+            signal,
+            None,
+            modes,
+            motor,
+            (velocity_tolerance, max_events_per_period),
+        ))
+    }
+
+    /// The engine with `spring` against the slider (docs/model.md section
+    /// 17). A driven rod with a free oscillation of its own and a spring
+    /// would need two oscillators in one event function, which the finder
+    /// does not take: `None` there.
+    pub fn with_spring(mut self, spring: Spring, motor: &Motor) -> Option<Self> {
+        if self.modes.iter().any(ModeFunctions::has_free) {
+            return None;
+        }
+        self.spring = Some(SpringLaw::new(spring, motor.params().slider_mass));
+        Some(self)
+    }
+
+    fn with_modes(
+        signal: &'s Signal,
+        rod: Option<&'s DrivenRod>,
+        modes: [ModeFunctions; 3],
+        motor: &Motor,
+        (velocity_tolerance, max_events_per_period): (f64, u64),
+    ) -> Self {
+        let v_scale = signal.velocity_scale().max(f64::MIN_POSITIVE);
+        let period = signal.period();
         Self {
             signal,
             rod,
+            spring: None,
             period,
             contact: Contact::new(motor, velocity_tolerance * v_scale),
             modes,
@@ -182,10 +236,14 @@ impl<'s> DrivenEngine<'s> {
     /// a grazing, whose time is an extremum of `v_rel`, where `a_st` crosses
     /// the edge itself when `a_d = a_0`) it is on an edge within the stick
     /// search's own tolerance ([`segment::band_tolerance`]).
-    fn band_after(&self, tau: f64, x: f64, v: f64, time_error: Option<f64>) -> Band {
-        let stick = self.functions(Mode::Stick);
-        let [upper, lower] =
-            stick.edge_functions(tau, x, v, [self.contact.a_minus, self.contact.a_plus]);
+    fn band_after(
+        &self,
+        tau: f64,
+        rod: Kinematics,
+        place: (bool, f64),
+        time_error: Option<f64>,
+    ) -> Band {
+        let [upper, lower] = self.edges(tau, rod, place);
         let [du, da, dda] = upper.eval(0.0);
         let dl = lower.eval(0.0)[0];
         let eta1 = upper.eval_error_bound(0.0)[1];
@@ -208,11 +266,32 @@ impl<'s> DrivenEngine<'s> {
         }
     }
 
+    /// `[a_st - a_0^+, a_st - a_0^-]` over a stick from `tau` with the rod
+    /// at `rod` and the slider at `place` = (in contact, `x_S - x_R`): the
+    /// stuck system's acceleration, with a spring's force over `m_s` added
+    /// (`slider.rs`).
+    fn edges(&self, tau: f64, rod: Kinematics, place: (bool, f64)) -> [ExpTrig; 2] {
+        let stick = self.functions(Mode::Stick);
+        let band = [self.contact.a_plus, self.contact.a_minus];
+        match &self.spring {
+            Some(law) => law.stuck_functions(stick, tau, rod, place, band),
+            None => stick.edge_functions(tau, rod.x, rod.v, [band[1], band[0]]),
+        }
+    }
+
     /// The mode of a slider with relative velocity `v_rel` at `tau` with
-    /// the rod at `(x, v)`; `time_error`: see [`Self::band_after`].
-    fn mode_for(&self, v_rel: f64, tau: f64, x: f64, v: f64, time_error: Option<f64>) -> Mode {
+    /// the rod at `rod` and the slider at `place` ([`Self::edges`]);
+    /// `time_error`: see [`Self::band_after`].
+    fn mode_for(
+        &self,
+        v_rel: f64,
+        tau: f64,
+        rod: Kinematics,
+        place: (bool, f64),
+        time_error: Option<f64>,
+    ) -> Mode {
         self.contact
-            .mode(v_rel, || self.band_after(tau, x, v, time_error))
+            .mode(v_rel, || self.band_after(tau, rod, place, time_error))
     }
 
     fn run_period_impl<O: Observer>(
@@ -223,11 +302,23 @@ impl<'s> DrivenEngine<'s> {
     ) -> Result<PeriodEnd, SimulationError> {
         let from_rest = period == 1 && start.mode.is_none() || self.state.is_none();
         let boundary = if from_rest {
+            // A rod that follows its signal starts where the signal does.
+            let stick = self.functions(Mode::Stick);
+            let rod = if stick.has_free() {
+                Kinematics { x: 0.0, v: 0.0 }
+            } else {
+                let p = stick.particular().state(0.0);
+                Kinematics { x: p.x, v: p.v }
+            };
             DrivenState {
-                rod_x: 0.0,
-                rod_v: 0.0,
-                slider_v: 0.0,
+                rod_x: rod.x,
+                rod_v: rod.v,
+                slider_v: rod.v,
                 mode: Mode::Stick,
+                slider: self.spring.map(|law| SliderState {
+                    x: 0.0,
+                    contact: law.spring.in_contact(0.0),
+                }),
             }
         } else {
             self.state.expect("a period before")
@@ -246,13 +337,21 @@ impl<'s> DrivenEngine<'s> {
             events: 0,
             mode: Mode::Stick,
             departure: false,
+            x_start: boundary.slider.map_or(0.0, |p| p.x),
+            contact: boundary.slider.is_some_and(|p| p.contact),
+            // A free end met exactly at the start (a gap of 0 from rest)
+            // is left or pressed from there on.
+            at_end: self
+                .spring
+                .zip(boundary.slider)
+                .is_some_and(|(law, p)| law.free_end() && law.gap() == p.x),
         };
         let v_rel = if !from_rest && boundary.mode == Mode::Stick {
             0.0
         } else {
             walk.rod.v - walk.v
         };
-        walk.mode = self.mode_for(v_rel, 0.0, walk.rod.x, walk.rod.v, None);
+        walk.mode = self.mode_for(v_rel, 0.0, walk.rod, walk.place(), None);
         walk.departure = self.contact.at_rest(v_rel);
         if walk.mode == Mode::Stick {
             walk.v = walk.rod.v;
@@ -274,6 +373,10 @@ impl<'s> DrivenEngine<'s> {
             rod_v: walk.rod.v,
             slider_v: walk.v,
             mode: walk.mode,
+            slider: self.spring.map(|_| SliderState {
+                x: walk.x_start + walk.x,
+                contact: walk.contact,
+            }),
         });
         let end = PeriodEnd {
             period,
@@ -297,17 +400,28 @@ impl<'s> DrivenEngine<'s> {
     ) -> Result<(), SimulationError> {
         let functions = functions_of(&self.modes, Mode::Stick);
         let span = self.period - walk.tau;
-        let exit = functions.stick_exit(
+        let exit = ModeFunctions::stick_exit(
+            self.edges(walk.tau, walk.rod, walk.place()),
             walk.tau,
-            walk.rod,
             span,
-            [self.contact.a_minus, self.contact.a_plus],
             &mut self.counters,
         );
-        let s_end = match exit {
+        let s_exit = match exit {
             StickExit::PeriodEnd => span,
             StickExit::Leaves { s, .. } => s,
         };
+        // A free end met or left before: the stick goes on from there with
+        // the spring's force changed (continuously: it is zero there).
+        let touch = self.spring.filter(|law| law.free_end()).and_then(|law| {
+            let f =
+                law.stuck_contact_function(functions, walk.tau, walk.rod, walk.x_start + walk.x);
+            contact_change(&f, s_exit, walk.contact, walk.at_end)
+        });
+        let (s_end, exit) = match touch {
+            Some(s) if s < s_exit => (s, StickExit::PeriodEnd),
+            _ => (s_exit, exit),
+        };
+        let touched = touch.is_some_and(|s| s == s_end);
         let end_tau = if s_end >= span {
             self.period
         } else {
@@ -344,12 +458,32 @@ impl<'s> DrivenEngine<'s> {
             walk.rod = rod_end;
             walk.tau = end;
         }
+        walk.at_end = false;
+        if touched {
+            self.contact_event(walk, observer)?;
+        }
         if let StickExit::Leaves { to, .. } = exit {
             walk.mode = Mode::Slip(to);
             walk.departure = true;
             self.emit(walk, EventKind::StickToSlip { to }, observer)?;
         }
         Ok(())
+    }
+
+    /// The free end is met or left at `walk.tau`.
+    fn contact_event<O: Observer>(
+        &mut self,
+        walk: &mut Walk,
+        observer: &mut O,
+    ) -> Result<(), SimulationError> {
+        walk.contact = !walk.contact;
+        walk.at_end = true;
+        let kind = if walk.contact {
+            EventKind::ContactStart
+        } else {
+            EventKind::ContactEnd
+        };
+        self.emit(walk, kind, observer)
     }
 
     /// A sliding slider moves with constant acceleration until `v_rel`
@@ -363,27 +497,49 @@ impl<'s> DrivenEngine<'s> {
         let a_s = self.contact.slip_acceleration(dir);
         let functions = functions_of(&self.modes, Mode::Slip(dir));
         let span = self.period - walk.tau;
+        let x_abs = walk.x_start + walk.x;
+        let motion = match &self.spring {
+            Some(law) => law.slip(walk.contact, x_abs, walk.v, a_s),
+            None => SliderMotion::Uniform {
+                x0: x_abs,
+                v0: walk.v,
+                a: a_s,
+            },
+        };
         let zero = functions.slip_zero(
             walk.tau,
             walk.rod,
-            (walk.v, a_s),
+            &motion,
             span,
             self.contact.tol_v,
             (dir, walk.departure),
             &mut self.counters,
         );
-        let (s_end, grazing) = match zero {
-            Some(z) => (z.s, z.tangency),
-            None => (span, false),
+        let s_zero = zero.map_or(span, |z| z.s);
+        // A free end met or left before the zero of v_rel: the slip goes on
+        // from there on the other law.
+        let touch = self.spring.filter(|law| law.free_end()).and_then(|law| {
+            let f = law.slip_contact_function(&motion, functions.particular().omega());
+            contact_change(&f, s_zero, walk.contact, walk.at_end)
+        });
+        let (zero, touched) = match touch {
+            Some(s) if s < s_zero || zero.is_none() => (None, Some(s)),
+            _ => (zero, None),
+        };
+        let (s_end, grazing) = match (zero, touched) {
+            (Some(z), _) => (z.s, z.tangency),
+            (None, Some(s)) => (s, false),
+            (None, None) => (span, false),
         };
         let rod_end = functions.rod_at(walk.tau, walk.rod, s_end);
-        let end_tau = if zero.is_none() {
+        let end_tau = if zero.is_none() && touched.is_none() {
             self.period
         } else {
             walk.tau + s_end
         };
-        let x1 = walk.x + walk.v * s_end + 0.5 * a_s * s_end * s_end;
-        let v1 = walk.v + a_s * s_end;
+        let slider_end = motion.at(s_end);
+        let x1 = slider_end.x - walk.x_start;
+        let v1 = slider_end.v;
         if end_tau > walk.tau && observer.wants_slip_segments() {
             let slider = [
                 Kinematics {
@@ -400,6 +556,10 @@ impl<'s> DrivenEngine<'s> {
         walk.rod = rod_end;
         walk.tau = end_tau;
         walk.departure = false;
+        walk.at_end = false;
+        if touched.is_some() {
+            return self.contact_event(walk, observer);
+        }
         if let Some(z) = zero {
             self.zero_of_v_rel(walk, grazing, z.time_error, observer)?;
         }
@@ -417,11 +577,13 @@ impl<'s> DrivenEngine<'s> {
     ) -> Result<(), SimulationError> {
         let old = walk.mode;
         let at_zero = (!grazing).then_some(time_error);
-        let mode = self.mode_for(0.0, walk.tau, walk.rod.x, walk.rod.v, at_zero);
+        let mode = self.mode_for(0.0, walk.tau, walk.rod, walk.place(), at_zero);
         walk.mode = mode;
-        let a_st = self
-            .rod
-            .acceleration(Load::Stuck, walk.tau, walk.rod.x, walk.rod.v);
+        // The stuck system's acceleration with the spring's force over
+        // m_s: the slider's acceleration jumps from the old mode's to the
+        // new one's by the difference of the contact law's values.
+        let a_st =
+            self.edges(walk.tau, walk.rod, walk.place())[0].eval(0.0)[0] + self.contact.a_plus;
         let a_old = self.contact.acceleration(old, a_st);
         let a_new = self.contact.acceleration(mode, a_st);
         walk.uncertainty += (a_old - a_new).abs() * time_error;
@@ -479,79 +641,5 @@ impl<'s> DrivenEngine<'s> {
             at,
             observer,
         )
-    }
-}
-
-/// Mutable state of the walk through one period.
-struct Walk {
-    period: u64,
-    tau: f64,
-    /// The rod's state at `tau`.
-    rod: Kinematics,
-    /// Slider position relative to the period start (m).
-    x: f64,
-    /// Slider velocity (m/s).
-    v: f64,
-    uncertainty: f64,
-    /// The largest bound on an event time's error in the period (s).
-    time_error: f64,
-    events: u64,
-    mode: Mode,
-    /// `v_rel = 0` at `tau` and the slip leaves zero: not an event again.
-    departure: bool,
-}
-
-impl PeriodEngine for DrivenEngine<'_> {
-    fn signal(&self) -> &Signal {
-        self.signal
-    }
-
-    fn run_period<O: Observer>(
-        &mut self,
-        period: u64,
-        start: PeriodStart,
-        observer: &mut O,
-    ) -> Result<PeriodEnd, SimulationError> {
-        self.run_period_impl(period, start, observer)
-    }
-
-    fn counters(&self) -> WorkCounters {
-        self.counters
-    }
-
-    fn zero_velocity_tolerance(&self) -> f64 {
-        self.contact.tol_v
-    }
-
-    fn last_velocity_uncertainty(&self) -> Option<f64> {
-        Some(self.last_uncertainty)
-    }
-
-    /// The largest event-time bound of the last period: the solver's
-    /// tolerance plus `eta / |v_rel'|` at each zero of `v_rel`.
-    fn event_time_uncertainty(&self) -> f64 {
-        self.last_time_error
-    }
-
-    fn carries_rod_state(&self) -> bool {
-        true
-    }
-
-    fn drive_profile(&self, segments: &[Segment]) -> Option<DriveProfile> {
-        let Signal::Fourier(signal) = self.signal else {
-            return None;
-        };
-        Some(profile::profile(segments, self.rod, signal, |mode| {
-            self.functions(mode)
-        }))
-    }
-
-    fn boundary_state(&self) -> Option<DrivenState> {
-        self.state
-    }
-
-    fn restart_from(&mut self, state: DrivenState) -> bool {
-        self.state = Some(state);
-        true
     }
 }

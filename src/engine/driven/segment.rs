@@ -4,6 +4,7 @@
 //! exponential-trigonometric functions of `s`, and their first zeros.
 
 use super::super::{Direction, Kinematics, WorkCounters};
+use super::slider::SliderMotion;
 use crate::actuator::ModeResponse;
 use crate::numerics::exp_trig::{Crossing, DampedOscillator, ExpTrig, Start};
 use crate::signal::FourierSignal;
@@ -15,6 +16,9 @@ pub(super) struct ModeFunctions {
     particular: FourierSignal,
     sigma: f64,
     omega0: f64,
+    /// The rod has a free oscillation (a driven rod); without (a prescribed
+    /// rod) it follows the particular solution, its free part zero.
+    has_free: bool,
     w: f64,
     /// Velocity of the particular solution: cos and sin coefficients.
     vel: [Vec<f64>; 2],
@@ -79,6 +83,7 @@ impl ModeFunctions {
             particular: p,
             sigma: response.sigma,
             omega0: response.omega0,
+            has_free: response.free,
             w,
             vel,
             acc,
@@ -109,6 +114,14 @@ impl ModeFunctions {
     /// The free oscillation `h` at the segment start `tau` for the rod
     /// state `rod`.
     fn free(&self, tau: f64, rod: Kinematics) -> DampedOscillator {
+        if !self.has_free {
+            return DampedOscillator {
+                sigma: self.sigma,
+                omega0: self.omega0,
+                y0: 0.0,
+                y1: 0.0,
+            };
+        }
         let p = self.particular.state(tau);
         DampedOscillator {
             sigma: self.sigma,
@@ -195,31 +208,44 @@ impl ModeFunctions {
     }
 
     /// `v_rel(s) = v_R(tau + s) - v_S - a_s s`.
-    fn v_rel(&self, tau: f64, rod: Kinematics, (v_s, a_s): (f64, f64)) -> ExpTrig {
-        let free = self.free(tau, rod);
+    fn v_rel(&self, tau: f64, rod: Kinematics, slider: &SliderMotion) -> ExpTrig {
+        let (poly, slider_osc) = slider.negative_velocity();
+        // A rod without a free oscillation leaves the oscillator's place to
+        // a slider on a spring; a driven rod with one has the spring
+        // refused (DrivenEngine::with_spring).
+        let osc = match slider_osc {
+            Some(o) if !self.has_free => Some(o),
+            _ => Some(self.free(tau, rod).derivative()),
+        };
         ExpTrig {
-            poly: [-v_s, -a_s, 0.0],
+            poly,
             w: self.w,
             phi: tau,
             a: self.vel[0].clone(),
             b: self.vel[1].clone(),
-            osc: Some(free.derivative()),
+            osc,
         }
+    }
+
+    /// Whether the rod has a free oscillation of its own.
+    pub(super) fn has_free(&self) -> bool {
+        self.has_free
     }
 
     /// Where a stick phase that starts at `tau` with the rod at `rod` ends
     /// within `span`: the first time the stuck system's acceleration leaves
     /// `[lo, hi]`. Touching an edge from inside, or crossing back in,
     /// keeps the slider stuck.
+    ///
+    /// `[upper, lower]` are `a_st - a_0^+` and `a_st - a_0^-` over the
+    /// stick from `tau` ([`ModeFunctions::edge_functions`], or with a
+    /// spring's force the slider's `stuck_functions`).
     pub(super) fn stick_exit(
-        &self,
+        [upper, lower]: [ExpTrig; 2],
         tau: f64,
-        rod: Kinematics,
         span: f64,
-        [lo, hi]: [f64; 2],
         counters: &mut WorkCounters,
     ) -> StickExit {
-        let [upper, lower] = self.edge_functions(tau, rod.x, rod.v, [lo, hi]);
         let tol = band_tolerance(&upper, &lower, span);
         // A stick phase that starts on an edge (within `tol`) moving inwards
         // or along it starts at that decision: the search goes on from it.
@@ -295,7 +321,7 @@ impl ModeFunctions {
         &self,
         tau: f64,
         rod: Kinematics,
-        slider: (f64, f64),
+        slider: &SliderMotion,
         span: f64,
         tol_v: f64,
         (dir, departure): (Direction, bool),
@@ -332,8 +358,8 @@ impl ModeFunctions {
             found
         } else {
             counters.root_iterations += 1;
-            // v_rel' = a_R - a_s: the band function at the level a_s.
-            let slope = self.band_function(tau, rod.x, rod.v, slider.1);
+            // v_rel' = a_R - a_S.
+            let slope = f.derivative();
             let tol = 4.0 * slope.eval_error_bound(span)[0];
             match slope.first_zero(0.0, span, tol, Start::Clear) {
                 Some(c) if f.eval(c.s())[0].abs() <= tol_v => Some(Crossing::Tangency { s: c.s() }),

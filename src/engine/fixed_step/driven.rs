@@ -71,6 +71,7 @@
 //! slider's share of the grid's error, to first order.
 
 use super::rod::{RodStep, Tangent};
+use super::spring::SpringStep;
 use super::{FixedStepEngine, Walk};
 use crate::actuator::{DrivenRod, Load, Voltage};
 use crate::engine::DriveProfile;
@@ -87,6 +88,10 @@ pub(super) struct Driven {
     /// The stuck system's acceleration `a_st` at rest at phase 0 (m/s^2):
     /// the mode a period 1 starts in.
     at_rest: f64,
+    /// The share of a force on a stuck slider that the stuck system's
+    /// acceleration feels, per slider mass: `m_s / (M + m_s)` with
+    /// reaction, 0 without (the rod moves by its own equation).
+    stuck_share: f64,
     /// The state the last period ended in; `None` before the first.
     carry: Option<Carry>,
     /// The voltage, the real actuator's `alpha` and the capacitance `C`,
@@ -113,6 +118,12 @@ impl Driven {
         Self {
             step: RodStep::new(rod, motor, h),
             at_rest: rod.acceleration(Load::Stuck, 0.0, 0.0, 0.0),
+            stuck_share: if rod.reaction() {
+                let m_s = motor.params().slider_mass;
+                m_s / (rod.real().mass + m_s)
+            } else {
+                0.0
+            },
             carry: None,
             voltage: rod.voltage().clone(),
             alpha: rod.real().transfer_factor,
@@ -158,6 +169,19 @@ impl Driven {
         })
     }
 
+    /// The friction's acceleration `a_fr` for the slider at rest at
+    /// phase 0 (x_S = 0) against `spring`: `a_st` of the stuck system
+    /// under the spring's force `F` plus `F / m_s` (`spring.rs`).
+    fn at_rest_with(&self, spring: Option<&SpringStep>) -> f64 {
+        match spring {
+            None => self.at_rest,
+            Some(spring) => {
+                let per_slider = spring.accel(0.0, 0.0);
+                self.at_rest + per_slider * (1.0 - self.stuck_share)
+            }
+        }
+    }
+
     /// The rod at the end of the last period (at rest before the first).
     pub(super) fn rod_state(&self) -> Kinematics {
         self.carry.map_or(Kinematics::default(), |c| c.rod)
@@ -183,6 +207,7 @@ impl FixedStepEngine<'_> {
         observer: &mut O,
     ) -> PeriodEnd {
         let step = &driven.step;
+        let origin = self.origin(period, &start);
         let carry = match driven.carry {
             Some(carry) if period != 1 || start.mode.is_some() => {
                 debug_assert_eq!(start.velocity, carry.slider, "not the last period's end");
@@ -192,23 +217,14 @@ impl FixedStepEngine<'_> {
             _ => Carry {
                 rod: Kinematics::default(),
                 slider: 0.0,
-                mode: self.contact.band(driven.at_rest).mode_at_rest(),
+                mode: self
+                    .contact
+                    .band(driven.at_rest_with(self.spring.as_ref()))
+                    .mode_at_rest(),
             },
         };
-        let mut walk = Walk {
-            period,
-            tau: 0.0,
-            x: 0.0,
-            v: carry.slider,
-            mode: carry.mode,
-            derivative: 1.0,
-            uncertainty: 0.0,
-            segment_start: 0.0,
-            segment_slider: Kinematics {
-                x: 0.0,
-                v: carry.slider,
-            },
-        };
+        let mut walk = Walk::new(period, origin, carry.slider, self.spring.as_ref());
+        walk.mode = carry.mode;
         let h = self.h;
         let mut rod = carry.rod;
         let mut segment_rod = rod;
@@ -223,7 +239,14 @@ impl FixedStepEngine<'_> {
         for k in 0..self.steps {
             let next = self.node(k + 1);
             let f1 = step.force(if next >= self.period { 0.0 } else { next });
-            let ends = step.ends(rod, walk.v, [f0, f1]);
+            let load = self
+                .spring
+                .as_ref()
+                .and_then(|s| s.load(walk.origin + walk.x, walk.v, h));
+            let ends = match &load {
+                None => step.ends(rod, walk.v, [f0, f1]),
+                Some(load) => step.ends_with_spring(rod, walk.v, [f0, f1], load),
+            };
             let new_mode = self.choose(walk.mode, ends.a_req, ends.relative(), h);
             if new_mode != walk.mode {
                 walk.uncertainty += h * self.acceleration_jump(walk.mode, new_mode, ends.a_req);
@@ -238,20 +261,41 @@ impl FixedStepEngine<'_> {
             }
             let [v_rod, v_slider] = ends.of(new_mode);
             // A stuck slider's velocity extremum at this node ends the
-            // segment (the contract of `carries_rod_state`).
+            // segment (the contract of `carries_rod_state`), and so does
+            // a slip step under a spring's load (`spring.rs`).
             let dv = v_rod - rod.v;
-            if new_mode == Mode::Stick && last_dv * dv < 0.0 && observer.wants_segments() {
+            let cut = match new_mode {
+                Mode::Stick => last_dv * dv < 0.0,
+                Mode::Slip(_) => load.is_some(),
+            };
+            if cut && observer.wants_segments() {
                 let seg = [rod_state(segment_rod), rod_state(rod)];
                 self.close_segment_with(&mut walk, observer, |_| seg);
                 segment_rod = rod;
             }
             last_dv = dv;
-            tangent = step.tangent(new_mode, tangent);
+            tangent = match &load {
+                None => step.tangent(new_mode, tangent),
+                Some(load) => step.tangent_with_spring(new_mode, tangent, load),
+            };
             rod.x += 0.5 * h * (rod.v + v_rod);
             rod.v = v_rod;
+            let v0 = walk.v;
             walk.x += 0.5 * h * (walk.v + v_slider);
             walk.v = v_slider;
             walk.tau = next;
+            if load.is_some() && matches!(new_mode, Mode::Slip(_)) {
+                walk.step_accel = Some((v_slider - v0) / h);
+            }
+            let seg = [rod_state(segment_rod), rod_state(rod)];
+            if let Some(kind) = self.contact_change(&mut walk, observer, |_| seg) {
+                segment_rod = rod;
+                self.emit(&walk, kind, observer);
+            }
+            if walk.step_accel.is_some() {
+                self.close_segment_with(&mut walk, observer, |_| seg);
+                segment_rod = rod;
+            }
             f0 = f1;
             if record {
                 driven.nodes.push([next, rod.x, rod.v]);
@@ -263,6 +307,7 @@ impl FixedStepEngine<'_> {
         self.counters.evaluations += self.steps;
         self.counters.periods += 1;
         self.last_uncertainty = walk.uncertainty;
+        self.slider_x = walk.origin + walk.x;
         driven.carry = Some(Carry {
             rod,
             slider: walk.v,

@@ -88,7 +88,8 @@
 //! The same [`Segment`](super::Segment)s, [`Event`]s and period ends as the event engine, so
 //! every observer and indicator works unchanged:
 //!
-//! * consecutive steps of equal mode are merged into one segment; a slip
+//! * consecutive steps of equal mode are merged into one segment (with a
+//!   spring, see below); a slip
 //!   segment is a true constant-acceleration piece, a stick segment follows
 //!   the rod at the nodes (its first step may start off the rod velocity:
 //!   the step in which the slider came to rest);
@@ -126,11 +127,38 @@
 //! through a period, with the rod's state carried from period to period.
 //! The step law above decides the mode with `a_req` taken from the coupled
 //! step; for a prescribed rod nothing changes.
+//!
+//! ## A spring against the slider
+//! [`FixedStepEngine::with_spring`] puts a spring against the slider
+//! (docs/model.md section 17), for a prescribed or a driven rod
+//! (`spring.rs`): `m_s a_S = F_f + m_s g_t - F_spring`, the spring taken
+//! by the trapezoidal rule over each step (semi-implicit), which adds
+//! `h (k h / 4 + b / 2)` to the slider's inertia over the step (`q`) and
+//! a force `G` known at the step start:
+//!
+//! ```text
+//! slip:  v_1 = v_0 + h (±a_d + g_t - a_g) / q,   a_g = G / m_s,
+//!        G = F_spring(x_0, v_0) + k h v_0 / 2,   q = 1 + h (k h / 4 + b / 2) / m_s
+//! stick: v_1 = v_R1, the band test on a_fr = q a_req + a_g
+//! ```
+//!
+//! (with `g_t` the stuck slider's friction is `m_s (a_fr - g_t)`). In slip
+//! in contact the step is second order (the trapezoidal rule on the
+//! slider's oscillator); the steps holding events keep the scheme first
+//! order. The engine then carries the slider's absolute position from
+//! period to period ([`FixedStepEngine::slider_position`],
+//! [`PeriodEngine::carries_rod_state`]); each slip step in contact is a
+//! segment of its own (its acceleration is the step's, not the mode's),
+//! stick segments are cut at the slider's velocity extrema, and a free end
+//! met or left at a node is a `ContactStart` or `ContactEnd` event there.
+//! A step out of contact is the spring-free step, bit for bit.
 
 mod driven;
+mod prescribed;
 mod rod;
+mod spring;
 
-use super::contact::{Contact, transition};
+use super::contact::Contact;
 use super::{
     Direction, Event, EventKind, Kinematics, Mode, PeriodEngine, PeriodStart, WorkCounters,
 };
@@ -139,7 +167,9 @@ use crate::actuator::DrivenRod;
 use crate::error::SimulationError;
 use crate::motor::Motor;
 use crate::signal::{RodState, Signal};
+use crate::spring::Spring;
 use driven::Driven;
+use spring::SpringStep;
 
 /// Settings of the fixed-step reference.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -184,6 +214,12 @@ pub struct FixedStepEngine<'s> {
     /// The driven rod and the state it carries from period to period
     /// (`driven.rs`); `None` for a prescribed rod.
     driven: Option<Box<Driven>>,
+    /// The spring against the slider (`spring.rs`), if any.
+    spring: Option<SpringStep>,
+    /// The slider's absolute position at the end of the last period (m).
+    slider_x: f64,
+    /// `m_s` (kg), for a spring's force.
+    slider_mass: f64,
 }
 
 /// Mutable state of the walk through one period.
@@ -193,6 +229,19 @@ struct Walk {
     tau: f64,
     /// Slider position relative to the period start (m).
     x: f64,
+    /// The slider's absolute position at the period start (m).
+    origin: f64,
+    /// A spring's free end is in contact at the current node.
+    contact: bool,
+    /// `[d x_S, d v_S]` with respect to the slider's velocity at the
+    /// period start, for an engine with a spring (`spring.rs`).
+    tangent: [f64; 2],
+    /// The rod's (stuck slider's) velocity increment over the last step,
+    /// for the stick segments' cuts at its extrema.
+    last_dv: f64,
+    /// The acceleration of the open segment when it is one slip step under
+    /// a spring's load (its own, not the mode's).
+    step_accel: Option<f64>,
     /// Slider velocity (m/s).
     v: f64,
     mode: Mode,
@@ -203,6 +252,29 @@ struct Walk {
     /// The open segment: its start phase and the slider there.
     segment_start: f64,
     segment_slider: Kinematics,
+}
+
+impl Walk {
+    /// A walk through `period` from the slider at absolute position
+    /// `origin` with velocity `v`, in stick until the caller decides.
+    fn new(period: u64, origin: f64, v: f64, spring: Option<&SpringStep>) -> Self {
+        Walk {
+            period,
+            tau: 0.0,
+            x: 0.0,
+            origin,
+            contact: spring.is_some_and(|s| s.in_contact(origin)),
+            tangent: [0.0, 1.0],
+            last_dv: 0.0,
+            step_accel: None,
+            v,
+            mode: Mode::Stick,
+            derivative: 1.0,
+            uncertainty: 0.0,
+            segment_start: 0.0,
+            segment_slider: Kinematics { x: 0.0, v },
+        }
+    }
 }
 
 impl<'s> FixedStepEngine<'s> {
@@ -233,7 +305,28 @@ impl<'s> FixedStepEngine<'s> {
             last_uncertainty: 0.0,
             counters: WorkCounters::default(),
             driven: None,
+            spring: None,
+            slider_x: 0.0,
+            slider_mass: motor.params().slider_mass,
         }
+    }
+
+    /// Puts `spring` against the slider (`spring.rs`, docs/model.md
+    /// section 17), for a prescribed or a driven rod. The engine then
+    /// carries the slider's absolute position from period to period
+    /// ([`PeriodEngine::carries_rod_state`]); period 1 without a mode
+    /// starts it at `x_S = 0`. `spring` is expected to be valid
+    /// ([`Spring::validate`]).
+    pub fn with_spring(mut self, spring: Spring) -> Self {
+        self.spring = Some(SpringStep::new(spring, self.slider_mass));
+        self
+    }
+
+    /// The slider's absolute position at the end of the last period run
+    /// (m), counted from the start of the last run from rest (period 1
+    /// without a mode); 0 before the first.
+    pub fn slider_position(&self) -> f64 {
+        self.slider_x
     }
 
     /// Prepares the engine for a rod driven by a voltage (`driven.rs`,
@@ -295,14 +388,6 @@ impl<'s> FixedStepEngine<'s> {
         } else {
             k as f64 * self.h
         }
-    }
-
-    /// The mode of a slider with relative velocity `v_rel` at phase `tau`
-    /// (right limit): slip in the direction of `v_rel`, or, within the
-    /// zero-velocity tolerance, the mode the band of `a_R(tau+)` gives.
-    fn mode_for(&self, v_rel: f64, tau: f64) -> Mode {
-        self.contact
-            .mode(v_rel, || self.contact.band(self.signal.state(tau).a))
     }
 
     /// One step of the scheme (module doc): the mode on the step and the
@@ -395,12 +480,7 @@ impl<'s> FixedStepEngine<'s> {
     /// Hands the open segment `[segment_start, tau]` to the observer and
     /// opens the next one at `tau`.
     fn close_segment<O: Observer>(&self, walk: &mut Walk, observer: &mut O) {
-        self.close_segment_with(walk, observer, |w| {
-            [
-                self.signal.state(w.segment_start),
-                self.signal.state_before(w.tau),
-            ]
-        });
+        self.close_segment_with(walk, observer, |w| self.rod_ends(w));
     }
 
     /// [`Self::close_segment`] with the rod at the segment's start and end
@@ -417,157 +497,24 @@ impl<'s> FixedStepEngine<'s> {
                 x: walk.x,
                 v: walk.v,
             };
-            let segment = self.contact.segment(
+            let mut segment = self.contact.segment(
                 walk.period,
                 [walk.segment_start, walk.tau],
                 walk.mode,
                 [walk.segment_slider, slider_end],
                 [rod_start, rod_end],
             );
+            if let Some(a) = walk.step_accel {
+                segment.slip_acceleration = a;
+            }
             observer.segment(&segment, self.signal);
         }
+        walk.step_accel = None;
         walk.segment_start = walk.tau;
         walk.segment_slider = Kinematics {
             x: walk.x,
             v: walk.v,
         };
-    }
-
-    /// A rod jump at the current phase: the slider keeps its velocity, the
-    /// mode follows from the new `v_rel`.
-    fn jump<O: Observer>(&mut self, walk: &mut Walk, before: RodState, observer: &mut O) {
-        self.close_segment(walk, observer);
-        let after = self.signal.state(walk.tau);
-        let mode = self.mode_for(after.v - walk.v, walk.tau);
-        if mode == Mode::Stick {
-            walk.v = after.v;
-            walk.segment_slider.v = after.v;
-            walk.derivative = 0.0;
-        }
-        walk.mode = mode;
-        let kind = EventKind::Jump {
-            dx: after.x - before.x,
-            dv: after.v - before.v,
-            then: mode,
-        };
-        self.emit(walk, kind, observer);
-    }
-
-    fn run_period_impl<O: Observer>(
-        &mut self,
-        period: u64,
-        start: PeriodStart,
-        observer: &mut O,
-    ) -> Result<PeriodEnd, SimulationError> {
-        let rod0 = self.rod_at_start;
-        let jumps = if period == 1 {
-            // From rest: the rod starts at x_R = 0, v_R = 0.
-            rod0.x.abs() > self.contact.tol_v * self.period || rod0.v.abs() > self.contact.tol_v
-        } else {
-            self.jump_at_start
-        };
-        let mut walk = Walk {
-            period,
-            tau: 0.0,
-            x: 0.0,
-            v: start.velocity,
-            mode: Mode::Stick,
-            derivative: 1.0,
-            uncertainty: 0.0,
-            segment_start: 0.0,
-            segment_slider: Kinematics {
-                x: 0.0,
-                v: start.velocity,
-            },
-        };
-        // The mode at 0+: the previous period's if it simply continues,
-        // else from v_rel (rest within tol_v: from the band of a_R(0+)).
-        let mode = match start.mode {
-            Some(m) if !jumps => m,
-            _ => self.mode_for(rod0.v - walk.v, 0.0),
-        };
-        if mode == Mode::Stick {
-            walk.v = rod0.v;
-            walk.segment_slider.v = rod0.v;
-            walk.derivative = 0.0;
-        }
-        walk.mode = mode;
-        if jumps {
-            let before = if period == 1 {
-                RodState::default()
-            } else {
-                self.rod_at_end
-            };
-            let kind = EventKind::Jump {
-                dx: rod0.x - before.x,
-                dv: rod0.v - before.v,
-                then: mode,
-            };
-            self.emit(&walk, kind, observer);
-        }
-
-        let snap = 1e-6 * self.h;
-        let mut k = 0u64;
-        let mut steps = 0u64;
-        while k < self.steps {
-            let mut next = self.node(k + 1);
-            let mut advance = true;
-            let mut at_jump = false;
-            if let Some(tj) = self.inner_jump
-                && walk.tau < tj
-                && tj < next + snap
-            {
-                at_jump = true;
-                if next - tj > snap {
-                    // Split the step at the jump; the rest follows.
-                    advance = false;
-                }
-                next = tj;
-            }
-            let h = next - walk.tau;
-            let v_rod_end = self.signal.velocity_before(next);
-            let (new_mode, v1) = self.step_law(walk.mode, walk.v, v_rod_end, h);
-            steps += 1;
-            if new_mode != walk.mode {
-                walk.uncertainty +=
-                    h * self.acceleration_jump(walk.mode, new_mode, (v_rod_end - walk.v) / h);
-                if new_mode == Mode::Stick {
-                    walk.derivative = 0.0;
-                }
-                self.close_segment(&mut walk, observer);
-                // A grid cannot tell a tangency from a crossing: every
-                // change of mode is a transition (never `None` here).
-                let kind = transition(walk.mode, new_mode, false);
-                walk.mode = new_mode;
-                if let Some(kind) = kind {
-                    self.emit(&walk, kind, observer);
-                }
-            }
-            walk.x += 0.5 * h * (walk.v + v1);
-            walk.v = v1;
-            walk.tau = next;
-            if at_jump {
-                let before = self.signal.state_before(next);
-                self.jump(&mut walk, before, observer);
-            }
-            if advance {
-                k += 1;
-            }
-        }
-        walk.tau = self.period;
-        self.close_segment(&mut walk, observer);
-        self.counters.evaluations += steps;
-        self.counters.periods += 1;
-        self.last_uncertainty = walk.uncertainty;
-        let end = PeriodEnd {
-            period,
-            step: walk.x,
-            velocity: walk.v,
-            mode: walk.mode,
-            map_derivative: walk.derivative,
-        };
-        observer.period_end(&end);
-        Ok(end)
     }
 }
 
@@ -605,9 +552,10 @@ impl PeriodEngine for FixedStepEngine<'_> {
         true
     }
 
-    /// True for a driven rod ([`FixedStepEngine::driven`]).
+    /// True for a driven rod ([`FixedStepEngine::driven`]) and with a
+    /// spring ([`FixedStepEngine::with_spring`]: the slider's position).
     fn carries_rod_state(&self) -> bool {
-        self.driven.is_some()
+        self.driven.is_some() || self.spring.is_some()
     }
 
     /// A driven rod's figures over the last period run with an observer of

@@ -75,6 +75,7 @@
 //! by a quantity that can vanish: `D >= M > 0`, `h > 0`.
 
 use super::super::{Direction, Kinematics, Mode};
+use super::spring::Load;
 use crate::actuator::DrivenRod;
 use crate::motor::Motor;
 use crate::signal::FourierSignal;
@@ -153,6 +154,8 @@ pub(super) struct Tangent {
     pub v: f64,
     /// `d v_S` (1).
     pub slider: f64,
+    /// `d x_S` (s).
+    pub slider_x: f64,
 }
 
 impl Tangent {
@@ -161,6 +164,7 @@ impl Tangent {
         x: 0.0,
         v: 0.0,
         slider: 1.0,
+        slider_x: 0.0,
     };
 }
 
@@ -245,6 +249,62 @@ impl RodStep {
             x: t.x + 0.5 * h * (t.v + rod),
             v: rod,
             slider,
+            slider_x: t.slider_x + 0.5 * h * (t.slider + slider),
+        }
+    }
+
+    /// [`RodStep::ends`] with a spring's `load` on the slider
+    /// (`spring.rs`): the slider's inertia over the step is `m_s q`, the
+    /// spring's force `m_s a_g` acts on it, and `a_req` is the friction's
+    /// acceleration `a_fr = q (V - v_S0) / h + a_g` the band is tested on.
+    #[inline]
+    pub(super) fn ends_with_spring(
+        &self,
+        rod: Kinematics,
+        v_s: f64,
+        f: [f64; 2],
+        load: &Load,
+    ) -> Ends {
+        let h = self.h;
+        let free =
+            (self.lag * rod.v - h * self.stiffness * rod.x + 0.5 * h * (f[0] + f[1])) / self.lead;
+        let inertia = self.slider_mass * load.q;
+        let stick = if self.reaction {
+            (self.lead * free + inertia * v_s + h * self.slider_mass * (self.g_t - load.accel))
+                / (self.lead + inertia)
+        } else {
+            free
+        };
+        Ends {
+            a_req: load.friction(v_s, stick, h),
+            stick,
+            forward: [free - self.kick, load.slide(v_s, self.slip[0], h)],
+            backward: [free + self.kick, load.slide(v_s, self.slip[1], h)],
+        }
+    }
+
+    /// [`RodStep::tangent`] with a spring's `load`: `a_g` varies with the
+    /// slider's start state, `d a_g = (k d x_S + (b + k h / 2) d v_S) / m_s`.
+    #[inline]
+    pub(super) fn tangent_with_spring(&self, mode: Mode, t: Tangent, load: &Load) -> Tangent {
+        let h = self.h;
+        let free = (self.lag * t.v - h * self.stiffness * t.x) / self.lead;
+        let d_accel = load.dx * t.slider_x + load.dv * t.slider;
+        let [rod, slider] = match mode {
+            Mode::Stick if self.reaction => {
+                let inertia = self.slider_mass * load.q;
+                let s = (self.lead * free + inertia * t.slider - h * self.slider_mass * d_accel)
+                    / (self.lead + inertia);
+                [s, s]
+            }
+            Mode::Stick => [free, free],
+            Mode::Slip(_) => [free, t.slider - h * d_accel / load.q],
+        };
+        Tangent {
+            x: t.x + 0.5 * h * (t.v + rod),
+            v: rod,
+            slider,
+            slider_x: t.slider_x + 0.5 * h * (t.slider + slider),
         }
     }
 }

@@ -282,6 +282,42 @@ pub(crate) struct Work {
 }
 
 impl ExpTrig {
+    /// `p0 + p1 s + p2 s² + y(s)`: no harmonics (`w` sets the walk's
+    /// scale where there is no oscillator).
+    pub(crate) fn local(poly: [f64; 3], w: f64, osc: Option<DampedOscillator>) -> ExpTrig {
+        ExpTrig {
+            poly,
+            w,
+            phi: 0.0,
+            a: Vec::new(),
+            b: Vec::new(),
+            osc,
+        }
+    }
+
+    /// `f'` in the same class: the polynomial's, each harmonic's
+    /// (`a_k cos + b_k sin` gives `k w (b_k cos - a_k sin)`) and the
+    /// oscillator's derivative.
+    pub(crate) fn derivative(&self) -> ExpTrig {
+        let [_, p1, p2] = self.poly;
+        let (a, b) = self
+            .pairs()
+            .enumerate()
+            .map(|(i, (a, b))| {
+                let kw = (i + 1) as f64 * self.w;
+                (kw * b, -kw * a)
+            })
+            .unzip();
+        ExpTrig {
+            poly: [p1, 2.0 * p2, 0.0],
+            w: self.w,
+            phi: self.phi,
+            a,
+            b,
+            osc: self.osc.map(|o| o.derivative()),
+        }
+    }
+
     /// Number of harmonics (the longer of `a`, `b`).
     fn harmonics(&self) -> usize {
         self.a.len().max(self.b.len())

@@ -1,0 +1,137 @@
+//! `stickslip bench [SCENE]`: the spring method's reading against spring
+//! stiffness, tied and free-ended, beside the stall force (weight method)
+//! and the start-up force (Newton method) ([`crate::bench`]); printed as
+//! text, JSON or CSV, and drawn as a figure ([`crate::plot::bench`]).
+//!
+//! Every argument is checked before anything runs: the options, that no
+//! output (the table, the figure, the figure's CSV) is the scene or
+//! another output, and that the figure's format and directory are usable.
+
+use super::{Failure, SceneOptions, Streams, refuse_outputs, write_out};
+use crate::bench::{self, BenchOptions, SpringKinds, table};
+use clap::Args;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `bench`.
+#[derive(Args)]
+pub(crate) struct BenchArgs {
+    /// Scene file (TOML); omitted: the built-in default scene. Its
+    /// [spring], if any, gives the tied spring's damping and preload or
+    /// the free end's gap; its stiffness is replaced.
+    scene: Option<PathBuf>,
+    /// Lowest spring stiffness (N/m).
+    #[arg(long, value_name = "K", default_value_t = bench::DEFAULT_FROM, allow_negative_numbers = true)]
+    from: f64,
+    /// Highest spring stiffness (N/m).
+    #[arg(long, value_name = "K", default_value_t = bench::DEFAULT_TO, allow_negative_numbers = true)]
+    to: f64,
+    /// Number of stiffnesses, log spaced from --from to --to.
+    #[arg(long, value_name = "N", default_value_t = bench::DEFAULT_POINTS)]
+    points: usize,
+    /// Periods from rest within which a spring's orbit must lock; a case
+    /// that locks into none is read over the 64 periods after them
+    #[arg(long, value_name = "N", default_value_t = bench::DEFAULT_MAX_PERIODS)]
+    max_periods: u64,
+    /// Only the spring tied to the slider.
+    #[arg(long, conflicts_with = "free")]
+    tied: bool,
+    /// Only the free-ended spring.
+    #[arg(long)]
+    free: bool,
+    /// Print one JSON object instead of the table.
+    #[arg(long, conflicts_with = "csv")]
+    json: bool,
+    /// Print one CSV row per stiffness and spring instead of the table.
+    #[arg(long)]
+    csv: bool,
+    /// Write the output to this file (atomically, only after success);
+    /// a name ending in .json or .csv chooses that format.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Also draw the spring force against stiffness: .svg, .pdf or .png,
+    /// with its data as .csv beside it.
+    #[arg(long, value_name = "FILE")]
+    figure: Option<PathBuf>,
+    /// Print preset of the figure (default: single-column).
+    #[arg(long, value_parser = ["single-column", "double-column", "slide"])]
+    style: Option<String>,
+    #[command(flatten)]
+    options: SceneOptions,
+    #[command(flatten)]
+    set: super::SceneSet,
+}
+
+fn extension_is(path: &Path, ext: &str) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
+/// Checks that no output is an input or another output, and that the
+/// figure can be written.
+fn check_outputs(args: &BenchArgs) -> Result<(), Failure> {
+    let inputs: Vec<&Path> = args.scene.iter().map(PathBuf::as_path).collect();
+    let figure_csv = args.figure.as_deref().map(crate::plot::data_path);
+    let outputs: Vec<&Path> = [&args.output, &args.figure, &figure_csv]
+        .into_iter()
+        .flatten()
+        .map(PathBuf::as_path)
+        .collect();
+    refuse_outputs(&outputs, &inputs)?;
+    match &args.figure {
+        Some(figure) => super::check_figure_path("--figure", figure),
+        None => Ok(()),
+    }
+}
+
+pub(crate) fn bench(args: BenchArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
+    let options = BenchOptions {
+        from: args.from,
+        to: args.to,
+        points: args.points,
+        max_periods: args.max_periods,
+        kinds: match (args.tied, args.free) {
+            (true, _) => SpringKinds::Tied,
+            (_, true) => SpringKinds::Free,
+            _ => SpringKinds::Both,
+        },
+    };
+    options.validate().map_err(|e| e.to_string())?;
+    let mut scene = super::load_scene(args.scene.as_deref(), &args.set)?;
+    check_outputs(&args)?;
+    args.options.apply(&mut scene, streams);
+    let b = bench::bench(&scene, &options).map_err(|e| e.to_string())?;
+    let json = args.json
+        || args
+            .output
+            .as_deref()
+            .is_some_and(|o| !args.csv && extension_is(o, "json"));
+    let csv = !json
+        && (args.csv
+            || args
+                .output
+                .as_deref()
+                .is_some_and(|o| extension_is(o, "csv")));
+    let text = if json {
+        let mut t =
+            serde_json::to_string_pretty(&table::to_json(&b, &scene)).map_err(|e| e.to_string())?;
+        t.push('\n');
+        t
+    } else if csv {
+        table::to_csv(&b, &scene)
+    } else {
+        table::to_text(&b)
+    };
+    if let Some(path) = &args.figure {
+        let name = path
+            .file_stem()
+            .map_or("bench".to_owned(), |s| s.to_string_lossy().into_owned());
+        let figure = crate::plot::bench::figure(&b, &scene, &name).map_err(|e| e.to_string())?;
+        super::write_figure(&figure, args.style.as_deref(), path)?;
+    }
+    match &args.output {
+        Some(path) => crate::output::write_atomically(path, text.as_bytes())
+            .map_err(|e| format!("cannot write {}: {e}", path.display())),
+        None => write_out(streams, &text),
+    }
+}
