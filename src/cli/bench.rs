@@ -7,10 +7,10 @@
 //! output (the table, the figure, the figure's CSV) is the scene or
 //! another output, and that the figure's format and directory are usable.
 
-use super::{Failure, SceneOptions, Streams, refuse_outputs, write_out};
+use super::{Failure, SceneOptions, Streams, write_out};
 use crate::bench::{self, BenchOptions, SpringKinds, table};
 use clap::Args;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Arguments of `bench`.
 #[derive(Args)]
@@ -61,29 +61,6 @@ pub(crate) struct BenchArgs {
     set: super::SceneSet,
 }
 
-fn extension_is(path: &Path, ext: &str) -> bool {
-    path.extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
-}
-
-/// Checks that no output is an input or another output, and that the
-/// figure can be written.
-fn check_outputs(args: &BenchArgs) -> Result<(), Failure> {
-    let inputs: Vec<&Path> = args.scene.iter().map(PathBuf::as_path).collect();
-    let figure_csv = args.figure.as_deref().map(crate::plot::data_path);
-    let outputs: Vec<&Path> = [&args.output, &args.figure, &figure_csv]
-        .into_iter()
-        .flatten()
-        .map(PathBuf::as_path)
-        .collect();
-    refuse_outputs(&outputs, &inputs)?;
-    match &args.figure {
-        Some(figure) => super::check_figure_path("--figure", figure),
-        None => Ok(()),
-    }
-}
-
 pub(crate) fn bench(args: BenchArgs, streams: &mut Streams<'_>) -> Result<(), Failure> {
     let options = BenchOptions {
         from: args.from,
@@ -98,20 +75,24 @@ pub(crate) fn bench(args: BenchArgs, streams: &mut Streams<'_>) -> Result<(), Fa
     };
     options.validate().map_err(|e| e.to_string())?;
     let mut scene = super::load_scene(args.scene.as_deref(), &args.set)?;
-    check_outputs(&args)?;
+    super::check_table_outputs(
+        args.scene.as_deref(),
+        args.output.as_deref(),
+        args.figure.as_deref(),
+    )?;
     args.options.apply(&mut scene, streams);
     let b = bench::bench(&scene, &options).map_err(|e| e.to_string())?;
     let json = args.json
         || args
             .output
             .as_deref()
-            .is_some_and(|o| !args.csv && extension_is(o, "json"));
+            .is_some_and(|o| !args.csv && super::extension_is(o, "json"));
     let csv = !json
         && (args.csv
             || args
                 .output
                 .as_deref()
-                .is_some_and(|o| extension_is(o, "csv")));
+                .is_some_and(|o| super::extension_is(o, "csv")));
     let text = if json {
         let mut t =
             serde_json::to_string_pretty(&table::to_json(&b, &scene)).map_err(|e| e.to_string())?;

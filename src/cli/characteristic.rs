@@ -8,10 +8,10 @@
 //! output (the table, the figure, the figure's CSV) is the scene or
 //! another output, and that the figure's format and directory are usable.
 
-use super::{Failure, SceneOptions, Streams, refuse_outputs, write_out};
+use super::{Failure, SceneOptions, Streams, write_out};
 use crate::characteristic::{self, CharacteristicOptions, LoadAxis, table};
 use clap::{Args, ValueEnum};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// The load.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -74,29 +74,6 @@ enum TableFormat {
     Csv,
 }
 
-fn extension_is(path: &Path, ext: &str) -> bool {
-    path.extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
-}
-
-/// Checks that no output is an input or another output, and that the
-/// figure can be written.
-fn check_outputs(args: &CharacteristicArgs) -> Result<(), Failure> {
-    let inputs: Vec<&Path> = args.scene.iter().map(PathBuf::as_path).collect();
-    let figure_csv = args.figure.as_deref().map(crate::plot::data_path);
-    let outputs: Vec<&Path> = [&args.output, &args.figure, &figure_csv]
-        .into_iter()
-        .flatten()
-        .map(PathBuf::as_path)
-        .collect();
-    refuse_outputs(&outputs, &inputs)?;
-    match &args.figure {
-        Some(figure) => super::check_figure_path("--figure", figure),
-        None => Ok(()),
-    }
-}
-
 pub(crate) fn characteristic(
     args: CharacteristicArgs,
     streams: &mut Streams<'_>,
@@ -116,21 +93,25 @@ pub(crate) fn characteristic(
         max_evaluations: args.max_evaluations,
     };
     options.validate().map_err(|e| e.to_string())?;
-    check_outputs(&args)?;
+    super::check_table_outputs(
+        args.scene.as_deref(),
+        args.output.as_deref(),
+        args.figure.as_deref(),
+    )?;
     args.options.apply(&mut scene, streams);
     let c = characteristic::characteristic(&scene, &options).map_err(|e| e.to_string())?;
     let format = if args.json
         || args
             .output
             .as_deref()
-            .is_some_and(|o| !args.csv && extension_is(o, "json"))
+            .is_some_and(|o| !args.csv && super::extension_is(o, "json"))
     {
         TableFormat::Json
     } else if args.csv
         || args
             .output
             .as_deref()
-            .is_some_and(|o| extension_is(o, "csv"))
+            .is_some_and(|o| super::extension_is(o, "csv"))
     {
         TableFormat::Csv
     } else {

@@ -334,6 +334,33 @@ pub(crate) fn write_figure(
         .map_err(|e| e.to_string())
 }
 
+/// True if `path` has the extension `ext` (any case).
+pub(crate) fn extension_is(path: &Path, ext: &str) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
+/// Checks that no output (`output`, `figure` and the figure's CSV) is the
+/// input `scene` or another output, and that the figure can be written.
+pub(crate) fn check_table_outputs(
+    scene: Option<&Path>,
+    output: Option<&Path>,
+    figure: Option<&Path>,
+) -> Result<(), Failure> {
+    let inputs: Vec<&Path> = scene.into_iter().collect();
+    let figure_csv = figure.map(crate::plot::data_path);
+    let outputs: Vec<&Path> = [output, figure, figure_csv.as_deref()]
+        .into_iter()
+        .flatten()
+        .collect();
+    refuse_outputs(&outputs, &inputs)?;
+    match figure {
+        Some(figure) => check_figure_path("--figure", figure),
+        None => Ok(()),
+    }
+}
+
 /// Refuses every output that is one of `inputs`
 /// ([`refuse_output_over_input`]) or names the same file as an earlier
 /// output. Call it before any work is done.
