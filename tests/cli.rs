@@ -72,6 +72,8 @@ fn json_has_the_interface_keys() {
         "reversal",
         "grazing",
         "jump",
+        "contact_start",
+        "contact_end",
     ] {
         assert!(v["events"][kind].is_u64(), "events.{kind}");
     }

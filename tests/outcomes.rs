@@ -148,6 +148,8 @@ fn json_is_traceable() {
         "reversal",
         "grazing",
         "jump",
+        "contact_start",
+        "contact_end",
     ];
     let log = v["event_log"].as_array().unwrap();
     assert!(!log.is_empty());

@@ -91,6 +91,8 @@ fn events_json(e: &EventCounts) -> Value {
         "reversal": e.reversal,
         "grazing": e.grazing,
         "jump": e.jump,
+        "contact_start": e.contact_start,
+        "contact_end": e.contact_end,
     })
 }
 
@@ -525,9 +527,17 @@ fn steady_text(r: &RunReport) -> String {
         );
     }
     let ev = r.events();
+    let contacts = if ev.contact_start + ev.contact_end > 0 {
+        format!(
+            ", {} contact start, {} contact end",
+            ev.contact_start, ev.contact_end
+        )
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         out,
-        "events over {} from rest: {} stick->slip, {} slip->stick, {} reversal, {} grazing, {} jump",
+        "events over {} from rest: {} stick->slip, {} slip->stick, {} reversal, {} grazing, {} jump{contacts}",
         crate::plural::count(r.startup_span(), "period", "periods"),
         ev.stick_to_slip,
         ev.slip_to_stick,
