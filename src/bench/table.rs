@@ -14,18 +14,7 @@ use crate::scene::{Scene, SceneFile};
 use serde_json::{Value, json};
 use std::fmt::Write as _;
 
-fn number(x: f64) -> Value {
-    if x.is_finite() { json!(x) } else { Value::Null }
-}
-
-fn option(x: Option<f64>) -> Value {
-    x.map_or(Value::Null, number)
-}
-
-/// `a / b`, if finite.
-fn ratio(a: f64, b: f64) -> Option<f64> {
-    (b != 0.0).then(|| a / b).filter(|r| r.is_finite())
-}
+use crate::characteristic::table::{number, option, ratio};
 
 /// The CSV columns, one row per stiffness and spring.
 pub(crate) const CSV_COLUMNS: [&str; 14] = [

@@ -378,22 +378,25 @@ pub struct ReferenceForces {
     pub holding_force: f64,
 }
 
-/// The stall force and the start-up force of `scene`, exactly as
-/// [`characteristic`] finds them, without sampling the curve: the zero
-/// load, the stall search and one start-up run.
-pub fn reference_forces(scene: &Scene) -> Result<ReferenceForces, CharacteristicError> {
+/// The holding force `mu_0 F_c` of `scene`'s motor, for `what` (a
+/// characteristic, a stall force): a prescribed rod and static friction
+/// are needed.
+fn holding_force(scene: &Scene, what: &str) -> Result<f64, CharacteristicError> {
     crate::simulation::prescribed_only(scene, "characteristic")?;
     let motor = scene.motor;
     if motor.mu_static <= 0.0 {
         return Err(ParamError::out_of_range(
             "motor.mu_static",
             motor.mu_static,
-            "must be positive for a stall force: without static friction no load is held",
+            format!("must be positive for {what}: without static friction no load is held"),
         )
         .into());
     }
-    let holding_force = motor.mu_static * motor.contact_force;
-    let ev = Evaluator::new(scene);
+    Ok(motor.mu_static * motor.contact_force)
+}
+
+/// The run at zero load, which must reach a steady state.
+fn steady_without_load(ev: &Evaluator) -> Result<Evaluation, CharacteristicError> {
     let no_load = ev.at(0.0, Purpose::Sampling)?;
     if !no_load.is_steady() {
         return Err(CharacteristicError::NoSteadyState {
@@ -401,6 +404,16 @@ pub fn reference_forces(scene: &Scene) -> Result<ReferenceForces, Characteristic
             regime: no_load.regime,
         });
     }
+    Ok(no_load)
+}
+
+/// The stall force and the start-up force of `scene`, exactly as
+/// [`characteristic`] finds them, without sampling the curve: the zero
+/// load, the stall search and one start-up run.
+pub fn reference_forces(scene: &Scene) -> Result<ReferenceForces, CharacteristicError> {
+    let holding_force = holding_force(scene, "a stall force")?;
+    let ev = Evaluator::new(scene);
+    let no_load = steady_without_load(&ev)?;
     let found = stall::find(&ev, no_load, holding_force, LIMIT_TOLERANCE * holding_force)?;
     Ok(ReferenceForces {
         stall: found.stall,
@@ -416,30 +429,14 @@ pub fn characteristic(
 ) -> Result<Characteristic, CharacteristicError> {
     let clock = Instant::now();
     options.validate()?;
-    crate::simulation::prescribed_only(scene, "characteristic")?;
-    let motor = scene.motor;
-    if motor.mu_static <= 0.0 {
-        return Err(ParamError::out_of_range(
-            "motor.mu_static",
-            motor.mu_static,
-            "must be positive for a characteristic: without static friction no load is held",
-        )
-        .into());
-    }
-    let holding_force = motor.mu_static * motor.contact_force;
-    let m = motor.slider_mass;
+    let holding_force = holding_force(scene, "a characteristic")?;
+    let m = scene.motor.slider_mass;
     let axis = options.axis;
     let range = options
         .range
         .unwrap_or_else(|| axis.default_range(holding_force));
     let ev = Evaluator::new(scene);
-    let no_load = ev.at(0.0, Purpose::Sampling)?;
-    if !no_load.is_steady() {
-        return Err(CharacteristicError::NoSteadyState {
-            load: 0.0,
-            regime: no_load.regime,
-        });
-    }
+    let no_load = steady_without_load(&ev)?;
     let limit_tolerance = LIMIT_TOLERANCE * holding_force;
     let sampled = sampling::sample(
         &ev,
@@ -528,7 +525,7 @@ pub fn characteristic(
         axis,
         range,
         slider_mass: m,
-        replaced_extra_acceleration: motor.extra_acceleration,
+        replaced_extra_acceleration: scene.motor.extra_acceleration,
         points,
         no_load,
         drive: no_load.sign().unwrap_or(0),

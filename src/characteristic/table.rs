@@ -22,15 +22,18 @@ use std::fmt::Write as _;
 pub(crate) const SIGN_CONVENTION: &str =
     "the load force F opposes forward motion: g_t = -F / m_s (F > 0 pushes back, F < 0 assists)";
 
-fn number(x: f64) -> Value {
+/// `x` in JSON: `null` where it is not finite.
+pub(crate) fn number(x: f64) -> Value {
     if x.is_finite() { json!(x) } else { Value::Null }
 }
 
-fn option(x: Option<f64>) -> Value {
+/// [`number`] of a value that may be absent.
+pub(crate) fn option(x: Option<f64>) -> Value {
     x.map_or(Value::Null, number)
 }
 
-fn ratio(a: f64, b: f64) -> Option<f64> {
+/// `a / b`, if finite.
+pub(crate) fn ratio(a: f64, b: f64) -> Option<f64> {
     (b != 0.0).then(|| a / b).filter(|r| r.is_finite())
 }
 

@@ -279,6 +279,17 @@ impl<'s> DrivenEngine<'s> {
         }
     }
 
+    /// The stuck system's acceleration at the walk's time, with a spring's
+    /// force over `m_s` added: from the driven rod's equation of motion
+    /// where there is no spring (one evaluation), else from the spring's
+    /// band function.
+    fn stuck_acceleration(&self, walk: &Walk) -> f64 {
+        match (&self.spring, self.rod) {
+            (None, Some(rod)) => rod.acceleration(Load::Stuck, walk.tau, walk.rod.x, walk.rod.v),
+            _ => self.edges(walk.tau, walk.rod, walk.place())[0].eval(0.0)[0] + self.contact.a_plus,
+        }
+    }
+
     /// The mode of a slider with relative velocity `v_rel` at `tau` with
     /// the rod at `rod` and the slider at `place` ([`Self::edges`]);
     /// `time_error`: see [`Self::band_after`].
@@ -579,11 +590,10 @@ impl<'s> DrivenEngine<'s> {
         let at_zero = (!grazing).then_some(time_error);
         let mode = self.mode_for(0.0, walk.tau, walk.rod, walk.place(), at_zero);
         walk.mode = mode;
-        // The stuck system's acceleration with the spring's force over
-        // m_s: the slider's acceleration jumps from the old mode's to the
-        // new one's by the difference of the contact law's values.
-        let a_st =
-            self.edges(walk.tau, walk.rod, walk.place())[0].eval(0.0)[0] + self.contact.a_plus;
+        // The slider's acceleration jumps from the old mode's to the new
+        // one's by the difference of the contact law's values at the
+        // stuck system's acceleration.
+        let a_st = self.stuck_acceleration(walk);
         let a_old = self.contact.acceleration(old, a_st);
         let a_new = self.contact.acceleration(mode, a_st);
         walk.uncertainty += (a_old - a_new).abs() * time_error;

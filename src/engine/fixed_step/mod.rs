@@ -255,6 +255,15 @@ struct Walk {
 }
 
 impl Walk {
+    /// The slider sticks to the rod moving at `v_rod`: it takes the rod's
+    /// velocity, which no longer depends on its own start velocity.
+    fn stick_to(&mut self, v_rod: f64) {
+        self.v = v_rod;
+        self.segment_slider.v = v_rod;
+        self.derivative = 0.0;
+        self.tangent[1] = 0.0;
+    }
+
     /// A walk through `period` from the slider at absolute position
     /// `origin` with velocity `v`, in stick until the caller decides.
     fn new(period: u64, origin: f64, v: f64, spring: Option<&SpringStep>) -> Self {

@@ -38,10 +38,7 @@ impl FixedStepEngine<'_> {
         let after = self.signal.state(walk.tau);
         let mode = self.mode_of(walk, after.v - walk.v);
         if mode == Mode::Stick {
-            walk.v = after.v;
-            walk.segment_slider.v = after.v;
-            walk.derivative = 0.0;
-            walk.tangent[1] = 0.0;
+            walk.stick_to(after.v);
         }
         walk.mode = mode;
         let kind = EventKind::Jump {
@@ -84,10 +81,7 @@ impl FixedStepEngine<'_> {
             _ => self.mode_of(&walk, rod0.v - walk.v),
         };
         if mode == Mode::Stick {
-            walk.v = rod0.v;
-            walk.segment_slider.v = rod0.v;
-            walk.derivative = 0.0;
-            walk.tangent[1] = 0.0;
+            walk.stick_to(rod0.v);
         }
         walk.mode = mode;
         if jumps {
