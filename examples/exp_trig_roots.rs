@@ -1,5 +1,5 @@
 //! The certified first-zero finder of `src/numerics/exp_trig` on many
-//! random functions (a quadratic, up to 15 harmonics, a damped oscillator
+//! random functions (a quadratic, up to 15 harmonics, one or two damped oscillators
 //! in every regime; `src/numerics/exp_trig/cases.rs`):
 //!
 //! * a simple root planted at a random `r` (`p0 -= f(r)`, where `f'(r)` is

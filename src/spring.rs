@@ -109,6 +109,16 @@ impl Spring {
         }
     }
 
+    /// `F_spring` (N) at `x` (m) and `v` (m/s) in contact, a free end's
+    /// compression taken as `x - x_gap` whatever its sign: the force law of
+    /// the contact mode.
+    pub fn force_in_contact(&self, x: f64, v: f64) -> f64 {
+        match self.end {
+            SpringEnd::Tied { preload } => preload + self.stiffness * x + self.damping * v,
+            SpringEnd::Free { gap } => self.stiffness * (x - gap),
+        }
+    }
+
     /// The slider's rest position (m) in contact under the constant force
     /// `f` (N, friction and `m_s g_t`): where `f = F_spring` at `v = 0`.
     pub fn slip_equilibrium(&self, f: f64) -> f64 {

@@ -150,6 +150,7 @@ impl Contact {
                 Mode::Stick => 0.0,
                 Mode::Slip(dir) => self.slip_acceleration(dir),
             },
+            slider_origin: 0.0,
         }
     }
 }

@@ -242,6 +242,10 @@ pub struct Segment {
     pub rod_end: Kinematics,
     /// Slider acceleration in slip (m/s^2); unused in stick.
     pub slip_acceleration: f64,
+    /// The slider's position from its start at the start of the period
+    /// (m), where the engine follows it (a spring against the slider); 0
+    /// elsewhere.
+    pub slider_origin: f64,
 }
 
 impl Segment {

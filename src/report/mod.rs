@@ -511,10 +511,10 @@ fn steady_text(r: &RunReport) -> String {
             out,
             "limit from rest: the fixed point of the period map on {} by Newton, the start-up \
              followed into its attraction ({} periods)",
-            if r.spring.is_some() {
-                "(x_S, v_S)"
-            } else {
-                "(x_R, v_R, v_S)"
+            match (r.spring.is_some(), r.drive.is_some()) {
+                (true, true) => "(x_R, v_R, x_S, v_S)",
+                (true, false) => "(x_S, v_S)",
+                (false, _) => "(x_R, v_R, v_S)",
             },
             r.transient.as_ref().map_or(0, |t| t.periods())
         ),

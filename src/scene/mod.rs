@@ -560,8 +560,8 @@ impl Scene {
 
 impl Scene {
     /// A spring needs a continuous signal (the exact engine's closed forms
-    /// of a rod that follows a Fourier series) and, for now, a prescribed
-    /// rod; its fields are checked by [`Spring::validate`].
+    /// of a rod that follows a Fourier series, or of a driven rod); its
+    /// fields are checked by [`Spring::validate`].
     fn check_spring(&self) -> Result<(), ParamError> {
         let Some(spring) = &self.spring else {
             return Ok(());
@@ -572,15 +572,6 @@ impl Scene {
                 field: "spring".to_owned(),
                 reason: "needs a continuous signal (signal.kind = \"fourier\" or \"harmonics\"): \
                          the ideal signal's jumps would strike the spring"
-                    .to_owned(),
-            });
-        }
-        if matches!(self.rod, RodModel::Driven(_)) {
-            return Err(ParamError::Inconsistent {
-                field: "spring".to_owned(),
-                reason: "with a driven rod (actuator.rod = \"driven\") is not available: its \
-                         slip would hold two oscillators (the rod's and the slider's) in one \
-                         event function; use a prescribed rod"
                     .to_owned(),
             });
         }

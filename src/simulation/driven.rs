@@ -133,25 +133,39 @@ pub(crate) struct Settle<'a> {
 
 /// The coordinates of the period map: the rod's state and the slider's
 /// velocity for a driven rod, the slider's position and velocity for a
-/// slider on a spring (its rod follows the signal, the same at every
-/// period start).
-fn vector(z: &DrivenState) -> DVector<f64> {
-    match z.slider {
-        Some(p) => DVector::from_vec(vec![p.x, z.slider_v]),
-        None => DVector::from_vec(vec![z.rod_x, z.rod_v, z.slider_v]),
+/// slider on a spring against a rod that follows the signal (the same at
+/// every period start), all four for a driven rod with a spring. The
+/// slider's velocity comes last.
+fn vector(z: &DrivenState, driven: bool) -> DVector<f64> {
+    match (z.slider, driven) {
+        (Some(p), false) => DVector::from_vec(vec![p.x, z.slider_v]),
+        (Some(p), true) => DVector::from_vec(vec![z.rod_x, z.rod_v, p.x, z.slider_v]),
+        (None, _) => DVector::from_vec(vec![z.rod_x, z.rod_v, z.slider_v]),
     }
 }
 
 /// `z` with its coordinates set to `c` ([`vector`]) and its mode `mode`.
-fn with_coordinates(z: &DrivenState, c: &DVector<f64>, mode: crate::engine::Mode) -> DrivenState {
-    match z.slider {
-        Some(p) => DrivenState {
+fn with_coordinates(
+    z: &DrivenState,
+    c: &DVector<f64>,
+    mode: crate::engine::Mode,
+    driven: bool,
+) -> DrivenState {
+    match (z.slider, driven) {
+        (Some(p), false) => DrivenState {
             slider_v: c[1],
             mode,
             slider: Some(crate::engine::SliderState { x: c[0], ..p }),
             ..*z
         },
-        None => DrivenState {
+        (Some(p), true) => DrivenState {
+            rod_x: c[0],
+            rod_v: c[1],
+            slider_v: c[3],
+            mode,
+            slider: Some(crate::engine::SliderState { x: c[2], ..p }),
+        },
+        (None, _) => DrivenState {
             rod_x: c[0],
             rod_v: c[1],
             slider_v: c[2],
@@ -195,10 +209,26 @@ impl<'a> Settle<'a> {
     /// The scales of `z`'s coordinates ([`vector`]).
     fn scales(&self, z: &DrivenState) -> DVector<f64> {
         let (x, v) = self.scale;
-        match z.slider {
-            Some(_) => DVector::from_vec(vec![x, v]),
-            None => DVector::from_vec(vec![x, v, v]),
+        match (z.slider, self.rod.is_some()) {
+            (Some(_), false) => DVector::from_vec(vec![x, v]),
+            (Some(_), true) => DVector::from_vec(vec![x, v, x, v]),
+            (None, _) => DVector::from_vec(vec![x, v, v]),
         }
+    }
+
+    /// [`vector`] of `z` for this test's rod.
+    fn vector(&self, z: &DrivenState) -> DVector<f64> {
+        vector(z, self.rod.is_some())
+    }
+
+    /// [`with_coordinates`] for this test's rod.
+    fn with_coordinates(
+        &self,
+        z: &DrivenState,
+        c: &DVector<f64>,
+        mode: crate::engine::Mode,
+    ) -> DrivenState {
+        with_coordinates(z, c, mode, self.rod.is_some())
     }
 
     /// After period `end` of the start-up with `events`: whether it has
@@ -237,7 +267,7 @@ impl<'a> Settle<'a> {
             self.deviations.clear();
             return Ok(None);
         }
-        let e = (vector(&z) - vector(&f.state)).component_div(&self.scales(&z));
+        let e = (self.vector(&z) - self.vector(&f.state)).component_div(&self.scales(&z));
         self.deviations.push_back(e.clone());
         if self.deviations.len() > f.window + 1 {
             self.deviations.pop_front();
@@ -273,7 +303,10 @@ impl<'a> Settle<'a> {
             let Some((p, events, step, segments)) = self.period_from(engine, z)? else {
                 return Ok(None);
             };
-            let jacobian = match self.rod {
+            // The exact Jacobian of a driven rod's period; with a spring,
+            // differences.
+            let exact = self.rod.filter(|_| z.slider.is_none());
+            let jacobian = match exact {
                 Some(rod) => match crate::sensitivity::period_map_jacobian(
                     rod,
                     self.motor,
@@ -288,7 +321,7 @@ impl<'a> Settle<'a> {
                     None => return Ok(None),
                 },
             };
-            let residual = vector(&p) - vector(&z);
+            let residual = self.vector(&p) - self.vector(&z);
             let Some(dz) = (DMatrix::identity(n, n) - &jacobian).lu().solve(&residual) else {
                 return Ok(None);
             };
@@ -296,7 +329,7 @@ impl<'a> Settle<'a> {
                 return Ok(None);
             }
             let correction = dz.component_div(&scales).norm();
-            z = with_coordinates(&p, &(vector(&z) + &dz), p.mode);
+            z = self.with_coordinates(&p, &(self.vector(&z) + &dz), p.mode);
             if correction <= CONVERGED {
                 return Ok(self.attracting(FixedPoint {
                     state: z,
@@ -353,7 +386,7 @@ impl<'a> Settle<'a> {
         events: EventCounts,
     ) -> Result<Option<DMatrix<f64>>, SimulationError> {
         let n = scales.len();
-        let c = vector(z);
+        let c = self.vector(z);
         let mut jacobian = DMatrix::zeros(n, n);
         for j in 0..n {
             let h = 1e-7 * scales[j];
@@ -362,14 +395,14 @@ impl<'a> Settle<'a> {
                 let mut shifted = c.clone();
                 shifted[j] += sign * h;
                 let Some((p, e, ..)) =
-                    self.period_from(engine, with_coordinates(z, &shifted, z.mode))?
+                    self.period_from(engine, self.with_coordinates(z, &shifted, z.mode))?
                 else {
                     return Ok(None);
                 };
                 if e != events || p.mode != z.mode {
                     return Ok(None);
                 }
-                ends.push(vector(&p));
+                ends.push(self.vector(&p));
             }
             let column = (&ends[0] - &ends[1]) / (2.0 * h);
             jacobian.set_column(j, &column);
@@ -422,15 +455,22 @@ impl<'a> Settle<'a> {
         };
         let rounding_v = rounding_velocity_of(signal, events);
         let rounding_x = 8.0 * f64::EPSILON * (events as f64 + 2.0) * signal.position_scale();
-        let mut delta = match self.rod {
+        // A slider on a spring: its position carries the velocity error
+        // over the period at most.
+        let slider_x = rounding_x + u * signal.period();
+        let mut delta = match (self.rod, f.state.slider.is_some()) {
             // The rod gets the share m_s / M of the slider's velocity error.
-            Some(rod) => {
+            (Some(rod), spring) => {
                 let share = self.motor.params().slider_mass / rod.real().mass;
-                DVector::from_vec(vec![rounding_x, rounding_v + share * u, rounding_v + u])
+                let rod_part = [rounding_x, rounding_v + share * u];
+                let slider_part = if spring {
+                    vec![slider_x, rounding_v + u]
+                } else {
+                    vec![rounding_v + u]
+                };
+                DVector::from_iterator(n, rod_part.into_iter().chain(slider_part))
             }
-            // A slider on a spring: its position carries the velocity
-            // error over the period at most.
-            None => DVector::from_vec(vec![rounding_x + u * signal.period(), rounding_v + u]),
+            (None, _) => DVector::from_vec(vec![slider_x, rounding_v + u]),
         };
         delta += &f.residual;
         (0..n).map(|j| g[(n - 1, j)].abs() * delta[j]).sum()

@@ -187,8 +187,8 @@ pub(super) fn simulate_built(
 ) -> Result<Outcome, Error> {
     let mut outcome = match (&scene.rod, scene.run.engine) {
         // A spring against the slider: the exact engine's closed forms of a
-        // rod that follows its signal (Scene::validate refuses a driven rod
-        // and a discontinuous signal with a spring).
+        // rod that follows its signal (Scene::validate refuses a
+        // discontinuous signal with a spring).
         (RodModel::Prescribed, EngineKind::Event) if scene.spring.is_some() => {
             let spring = scene.spring.expect("a spring");
             let engine = DrivenEngine::prescribed(
@@ -227,7 +227,18 @@ pub(super) fn simulate_built(
                         event.velocity_tolerance,
                         event.max_events_per_period,
                     );
-                    simulate_timed(engine, scene, motor, Some(&rod), clock)?
+                    match scene.spring {
+                        Some(spring) => {
+                            let engine = engine.with_spring(spring, motor).ok_or_else(|| {
+                                Error::Param(ParamError::Inconsistent {
+                                    field: "spring".to_owned(),
+                                    reason: "is outside its ranges".to_owned(),
+                                })
+                            })?;
+                            simulate_timed(engine, scene, motor, Some(&rod), clock)?
+                        }
+                        None => simulate_timed(engine, scene, motor, Some(&rod), clock)?,
+                    }
                 }
                 EngineKind::Fixed => {
                     let options = FixedStepOptions {
@@ -235,7 +246,13 @@ pub(super) fn simulate_built(
                         ..FixedStepOptions::default()
                     };
                     let engine = FixedStepEngine::driven(signal, motor, &rod, options);
-                    simulate_timed(engine, scene, motor, None, clock)?
+                    match scene.spring {
+                        Some(spring) => {
+                            let engine = engine.with_spring(spring);
+                            simulate_timed(engine, scene, motor, None, clock)?
+                        }
+                        None => simulate_timed(engine, scene, motor, None, clock)?,
+                    }
                 }
             }
         }

@@ -54,6 +54,7 @@ mod segment;
 mod slider;
 mod spring_profile;
 mod state;
+mod stuck;
 
 pub use profile::DriveProfile;
 pub use spring_profile::SpringProfile;
@@ -73,6 +74,8 @@ use crate::signal::{RodState, Signal};
 use crate::spring::Spring;
 use segment::{ModeFunctions, StickExit};
 use slider::{SliderMotion, SpringLaw};
+use std::borrow::Cow;
+use stuck::StuckOnSpring;
 
 /// The exact engine for a rod driven through the actuator.
 #[derive(Debug, Clone)]
@@ -83,6 +86,9 @@ pub struct DrivenEngine<'s> {
     rod: Option<&'s DrivenRod>,
     /// The spring against the slider, if any.
     spring: Option<SpringLaw>,
+    /// The stick mode with the spring in contact, where the rod feels the
+    /// slider (a driven rod with the reaction).
+    stuck_on_spring: Option<StuckOnSpring>,
     period: f64,
     contact: Contact,
     /// The three modes' functions: forward slip, backward slip, stick.
@@ -102,6 +108,19 @@ fn functions_of(modes: &[ModeFunctions; 3], mode: Mode) -> &ModeFunctions {
         Load::SlipForward => &modes[0],
         Load::SlipBackward => &modes[1],
         Load::Stuck => &modes[2],
+    }
+}
+
+/// [`DrivenEngine::stick_functions`] from the engine's modes and its stick
+/// mode on the spring.
+fn stick_functions_of<'m>(
+    modes: &'m [ModeFunctions; 3],
+    on_spring: Option<&'m StuckOnSpring>,
+    (contact, delta): (bool, f64),
+) -> Cow<'m, ModeFunctions> {
+    match on_spring {
+        Some(stuck) if contact => stuck.at(delta),
+        _ => Cow::Borrowed(functions_of(modes, Mode::Stick)),
     }
 }
 
@@ -161,13 +180,15 @@ impl<'s> DrivenEngine<'s> {
     }
 
     /// The engine with `spring` against the slider (docs/model.md section
-    /// 17). A driven rod with a free oscillation of its own and a spring
-    /// would need two oscillators in one event function, which the finder
-    /// does not take: `None` there.
+    /// 17): in slip the slider oscillates on it, beside a driven rod's own
+    /// free oscillation (two oscillators in `v_rel`); in stick its force
+    /// acts on the stuck system (`stuck.rs`). `None` where the spring's
+    /// fields are outside their ranges.
     pub fn with_spring(mut self, spring: Spring, motor: &Motor) -> Option<Self> {
-        if self.modes.iter().any(ModeFunctions::has_free) {
-            return None;
-        }
+        spring.validate().ok()?;
+        self.stuck_on_spring = self
+            .rod
+            .and_then(|rod| StuckOnSpring::new(rod, &spring, motor));
         self.spring = Some(SpringLaw::new(spring, motor.params().slider_mass));
         Some(self)
     }
@@ -185,6 +206,7 @@ impl<'s> DrivenEngine<'s> {
             signal,
             rod,
             spring: None,
+            stuck_on_spring: None,
             period,
             contact: Contact::new(motor, velocity_tolerance * v_scale),
             modes,
@@ -211,12 +233,40 @@ impl<'s> DrivenEngine<'s> {
         let span = segment.duration().max(0.0);
         let s = (tau - segment.start).clamp(0.0, span);
         let s = if s.is_nan() { 0.0 } else { s };
-        self.functions(segment.mode)
+        self.segment_functions(segment, None)
             .rod_at(segment.start, segment.rod_start, s)
     }
 
     fn functions(&self, mode: Mode) -> &ModeFunctions {
         functions_of(&self.modes, mode)
+    }
+
+    /// The stick mode's functions with the slider at `place` = (in
+    /// contact, `x_S - x_R`): with a spring in contact against a rod that
+    /// feels the slider, the stuck system's with the spring (`stuck.rs`).
+    fn stick_functions(&self, place: (bool, f64)) -> Cow<'_, ModeFunctions> {
+        stick_functions_of(&self.modes, self.stuck_on_spring.as_ref(), place)
+    }
+
+    /// The closed forms of `segment`'s mode, in contact with the spring
+    /// where `contact` says so. Where it does not say, a stick segment's
+    /// slider is in contact with a free end where it is beyond the end
+    /// somewhere on the segment (its ends are events, so it is on one side
+    /// throughout).
+    fn segment_functions(
+        &self,
+        segment: &Segment,
+        contact: Option<bool>,
+    ) -> Cow<'_, ModeFunctions> {
+        match (segment.mode, &self.spring) {
+            (Mode::Stick, Some(law)) => {
+                let x = segment.slider_origin + segment.slider_start.x;
+                let x_end = segment.slider_origin + segment.slider_end.x;
+                let contact = contact.unwrap_or_else(|| law.spring.in_contact(x.max(x_end)));
+                self.stick_functions((contact, x - segment.rod_start.x))
+            }
+            (mode, _) => Cow::Borrowed(self.functions(mode)),
+        }
     }
 
     /// The band the stuck system's acceleration lies in at phase `tau` for
@@ -271,10 +321,10 @@ impl<'s> DrivenEngine<'s> {
     /// stuck system's acceleration, with a spring's force over `m_s` added
     /// (`slider.rs`).
     fn edges(&self, tau: f64, rod: Kinematics, place: (bool, f64)) -> [ExpTrig; 2] {
-        let stick = self.functions(Mode::Stick);
+        let stick = self.stick_functions(place);
         let band = [self.contact.a_plus, self.contact.a_minus];
         match &self.spring {
-            Some(law) => law.stuck_functions(stick, tau, rod, place, band),
+            Some(law) => law.stuck_functions(&stick, tau, rod, place, band),
             None => stick.edge_functions(tau, rod.x, rod.v, [band[1], band[0]]),
         }
     }
@@ -409,7 +459,9 @@ impl<'s> DrivenEngine<'s> {
         walk: &mut Walk,
         observer: &mut O,
     ) -> Result<(), SimulationError> {
-        let functions = functions_of(&self.modes, Mode::Stick);
+        let functions =
+            stick_functions_of(&self.modes, self.stuck_on_spring.as_ref(), walk.place());
+        let functions = functions.as_ref();
         let span = self.period - walk.tau;
         let exit = ModeFunctions::stick_exit(
             self.edges(walk.tau, walk.rod, walk.place()),
@@ -625,13 +677,16 @@ impl<'s> DrivenEngine<'s> {
             v: k.v,
             a: 0.0,
         };
-        self.contact.segment(
-            walk.period,
-            [walk.tau, end],
-            mode,
-            slider,
-            [state(walk.rod), state(rod_end)],
-        )
+        Segment {
+            slider_origin: walk.x_start,
+            ..self.contact.segment(
+                walk.period,
+                [walk.tau, end],
+                mode,
+                slider,
+                [state(walk.rod), state(rod_end)],
+            )
+        }
     }
 
     fn emit<O: Observer>(

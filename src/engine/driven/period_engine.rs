@@ -46,8 +46,8 @@ impl PeriodEngine for DrivenEngine<'_> {
             return None;
         };
         let rod = self.rod?;
-        Some(profile::profile(segments, rod, signal, |mode| {
-            self.functions(mode)
+        Some(profile::profile(segments, rod, signal, |segment| {
+            self.segment_functions(segment, None)
         }))
     }
 
@@ -68,7 +68,7 @@ impl PeriodEngine for DrivenEngine<'_> {
             (segments, events),
             (self.period, periods),
             |dir| self.contact.slip_acceleration(dir),
-            |mode| self.functions(mode),
+            |segment, contact| self.segment_functions(segment, Some(contact)),
         ))
     }
 

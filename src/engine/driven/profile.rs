@@ -19,10 +19,11 @@
 
 use super::segment::ModeFunctions;
 use crate::actuator::DrivenRod;
-use crate::engine::{Mode, Segment};
+use crate::engine::Segment;
 use crate::numerics::exp_trig::{DampedOscillator, ExpTrig, Start};
 use crate::numerics::quadrature::GaussLegendre;
 use crate::signal::FourierSignal;
+use std::borrow::Cow;
 
 /// The amplifier's and the rod's figures over one steady period.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -45,12 +46,13 @@ pub struct DriveProfile {
 const POINTS: usize = 12;
 
 /// The profile of the period whose segments are `segments` (in order,
-/// covering the period), with `functions(mode)` the modes' closed forms.
+/// covering the period), with `functions(segment)` the closed forms of
+/// its mode.
 pub(super) fn profile<'a>(
     segments: &[Segment],
     rod: &DrivenRod,
     signal: &FourierSignal,
-    functions: impl Fn(Mode) -> &'a ModeFunctions,
+    functions: impl Fn(&Segment) -> Cow<'a, ModeFunctions>,
 ) -> DriveProfile {
     let voltage = rod.voltage();
     let period = signal.period();
@@ -71,7 +73,8 @@ pub(super) fn profile<'a>(
     let sig = signal.coefficients();
     let (mut e_max, mut e_sq, mut i_max, mut i_sq): (f64, f64, f64, f64) = (0.0, 0.0, 0.0, 0.0);
     for seg in segments.iter().filter(|s| s.end > s.start) {
-        let f = functions(seg.mode);
+        let f = functions(seg);
+        let f = f.as_ref();
         let rod0 = seg.rod_start;
         let free = f.free_at(seg.start, rod0);
         let span = seg.end - seg.start;
@@ -101,7 +104,7 @@ pub(super) fn profile<'a>(
             phi: seg.start,
             a: difference(&vel[0], &sig_vel[0]),
             b: difference(&vel[1], &sig_vel[1]),
-            osc: Some(free.derivative()),
+            osc: [Some(free.derivative()), None],
         };
         let di = ExpTrig {
             poly: [0.0; 3],
@@ -109,7 +112,7 @@ pub(super) fn profile<'a>(
             phi: seg.start,
             a: combination(capacitance, &ddu[0], alpha, &acc[0]),
             b: combination(capacitance, &ddu[1], alpha, &acc[1]),
-            osc: Some(scaled(free.derivative().derivative(), alpha)),
+            osc: [Some(scaled(free.derivative().derivative(), alpha)), None],
         };
         e_max = e_max.max(extremum(&de, span, &deviation));
         i_max = i_max.max(extremum(&di, span, &current));

@@ -90,6 +90,23 @@ impl ModeFunctions {
         }
     }
 
+    /// These functions with the particular solution's constant moved by
+    /// `shift` (m): a constant force `c_m shift` more in the mode's
+    /// equation, `c_m` its stiffness.
+    pub(super) fn shifted(&self, shift: f64) -> Self {
+        let p = &self.particular;
+        let c = p.coefficients();
+        Self {
+            particular: FourierSignal::from_coefficients(
+                p.period(),
+                p.offset() + shift,
+                c.cosines.to_vec(),
+                c.sines.to_vec(),
+            ),
+            ..self.clone()
+        }
+    }
+
     /// The particular solution.
     pub(super) fn particular(&self) -> &FourierSignal {
         &self.particular
@@ -169,7 +186,7 @@ impl ModeFunctions {
             phi: tau,
             a: self.acc[0].clone(),
             b: self.acc[1].clone(),
-            osc: Some(acceleration),
+            osc: [Some(acceleration), None],
         })
     }
 
@@ -210,12 +227,12 @@ impl ModeFunctions {
     /// `v_rel(s) = v_R(tau + s) - v_S - a_s s`.
     fn v_rel(&self, tau: f64, rod: Kinematics, slider: &SliderMotion) -> ExpTrig {
         let (poly, slider_osc) = slider.negative_velocity();
-        // A rod without a free oscillation leaves the oscillator's place to
-        // a slider on a spring; a driven rod with one has the spring
-        // refused (DrivenEngine::with_spring).
-        let osc = match slider_osc {
-            Some(o) if !self.has_free => Some(o),
-            _ => Some(self.free(tau, rod).derivative()),
+        // The rod's free oscillation (zero for a prescribed rod, which
+        // leaves its place to the slider's) and a slider's on a spring.
+        let rod_osc = self.has_free.then(|| self.free(tau, rod).derivative());
+        let osc = match (rod_osc, slider_osc) {
+            (None, None) => [Some(self.free(tau, rod).derivative()), None],
+            (rod, slider) => [rod.or(slider), rod.and(slider)],
         };
         ExpTrig {
             poly,

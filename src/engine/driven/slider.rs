@@ -184,7 +184,7 @@ impl SpringLaw {
             phi: tau,
             a: a.clone(),
             b: b.clone(),
-            osc: Some(osc),
+            osc: [Some(osc), None],
         })
     }
 
@@ -215,7 +215,7 @@ impl SpringLaw {
             phi: tau,
             a: c.cosines.to_vec(),
             b: c.sines.to_vec(),
-            osc: Some(functions.free_at(tau, rod)),
+            osc: [Some(functions.free_at(tau, rod)), None],
         }
     }
 

@@ -22,6 +22,7 @@ use super::{DrivenState, SliderState};
 use crate::engine::{Direction, Event, EventKind, Kinematics, Mode, Segment};
 use crate::numerics::exp_trig::{DampedOscillator, ExpTrig, Start};
 use crate::numerics::quadrature::GaussLegendre;
+use std::borrow::Cow;
 
 /// The spring's reading over a steady orbit.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,8 +44,9 @@ const POINTS: usize = 12;
 
 /// The profile of the orbit whose segments and events (in order, covering
 /// `periods` whole periods of length `period`) start from `start`;
-/// `slip(dir)` is the slider's slip acceleration, `functions(mode)` the
-/// rod's closed forms.
+/// `slip(dir)` is the slider's slip acceleration, `functions(segment,
+/// contact)` the rod's closed forms on a segment with the slider in
+/// contact or not.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn profile<'a>(
     law: &SpringLaw,
@@ -52,7 +54,7 @@ pub(super) fn profile<'a>(
     (segments, events): (&[Segment], &[Event]),
     (period, periods): (f64, u64),
     slip: impl Fn(Direction) -> f64,
-    functions: impl Fn(Mode) -> &'a ModeFunctions,
+    functions: impl Fn(&Segment, bool) -> Cow<'a, ModeFunctions>,
 ) -> SpringProfile {
     let spring = law.spring;
     let rule = GaussLegendre::new(POINTS);
@@ -94,7 +96,8 @@ pub(super) fn profile<'a>(
             continue;
         }
         let x0 = x_start + seg.slider_start.x;
-        let f = functions(seg.mode);
+        let f = functions(seg, contact);
+        let f = f.as_ref();
         let w = f.particular().omega();
         let (state, rate): (Box<dyn Fn(f64) -> Kinematics + '_>, ExpTrig) = match seg.mode {
             Mode::Stick => {
@@ -189,11 +192,14 @@ impl SpringLaw {
             phi: tau,
             a: mix(vel_a, acc_a),
             b: mix(vel_b, acc_b),
-            osc: Some(DampedOscillator {
-                y0: k * h1 + b * h2,
-                y1: k * h2 + b * h3,
-                ..h
-            }),
+            osc: [
+                Some(DampedOscillator {
+                    y0: k * h1 + b * h2,
+                    y1: k * h2 + b * h3,
+                    ..h
+                }),
+                None,
+            ],
         }
     }
 

@@ -16,7 +16,9 @@ pub(super) const PERIOD: f64 = 1e-4;
 /// `[-1, 1] / k^d` (`d` in {0, 1, 2}), a quadratic of comparable size over
 /// a few periods, and (four times in five) an oscillator in one of seven
 /// regimes: undamped, under-damped, `σ/ω0 = 1 - 1e-9, 1, 1 + 1e-9`,
-/// over-damped, `σ = 5 ω0`, with `ω0` from `0.3 w` to `30 w`.
+/// over-damped, `σ = 5 ω0`, with `ω0` from `0.3 w` to `30 w`; one time in
+/// three that it has one, a second oscillator drawn the same way (a rod's
+/// free oscillation and a slider's on a spring).
 pub(super) fn random_function(rng: &mut StdRng, n_max: usize) -> ExpTrig {
     let w = TAU / PERIOD;
     let n = rng.random_range(0..=n_max);
@@ -29,31 +31,36 @@ pub(super) fn random_function(rng: &mut StdRng, n_max: usize) -> ExpTrig {
         rng.random_range(-1.0..1.0) * 0.3 * w,
         rng.random_range(-1.0..1.0) * 0.003 * w * w,
     ];
-    let osc = (rng.random_range(0.0..1.0) < 0.8).then(|| {
-        let omega0 = w * 10f64.powf(rng.random_range(-0.5..1.5));
-        let ratio = match rng.random_range(0..7u32) {
-            0 => 0.0,
-            1 => rng.random_range(0.0..1.0),
-            2 => 1.0 - 1e-9,
-            3 => 1.0,
-            4 => 1.0 + 1e-9,
-            5 => rng.random_range(1.0..5.0),
-            _ => 5.0,
-        };
-        DampedOscillator {
-            sigma: ratio * omega0,
-            omega0,
-            y0: rng.random_range(-1.0..1.0),
-            y1: rng.random_range(-1.0..1.0) * omega0,
-        }
-    });
+    let osc = (rng.random_range(0.0..1.0) < 0.8).then(|| random_oscillator(rng, w));
+    let second = (osc.is_some() && rng.random_range(0.0..1.0) < 1.0 / 3.0)
+        .then(|| random_oscillator(rng, w));
     ExpTrig {
         poly,
         w,
         phi: rng.random_range(0.0..PERIOD),
         a,
         b,
-        osc,
+        osc: [osc, second],
+    }
+}
+
+/// An oscillator in one of the seven regimes of [`random_function`].
+fn random_oscillator(rng: &mut StdRng, w: f64) -> DampedOscillator {
+    let omega0 = w * 10f64.powf(rng.random_range(-0.5..1.5));
+    let ratio = match rng.random_range(0..7u32) {
+        0 => 0.0,
+        1 => rng.random_range(0.0..1.0),
+        2 => 1.0 - 1e-9,
+        3 => 1.0,
+        4 => 1.0 + 1e-9,
+        5 => rng.random_range(1.0..5.0),
+        _ => 5.0,
+    };
+    DampedOscillator {
+        sigma: ratio * omega0,
+        omega0,
+        y0: rng.random_range(-1.0..1.0),
+        y1: rng.random_range(-1.0..1.0) * omega0,
     }
 }
 
@@ -81,9 +88,13 @@ pub(super) fn events(f: &ExpTrig, s_a: f64, s_b: f64, tol: f64, limit: usize) ->
 fn sizes(f: &ExpTrig, s: f64) -> [f64; 4] {
     let m = f.harmonic_bounds();
     let [p0, p1, p2] = f.poly.map(f64::abs);
-    let osc = f.osc.map_or([0.0; 4], |o| {
-        o.derivative_bounds::<4>(&o.extend::<5>(&[o.y0, o.y1]), &[0.0; 5])
-    });
+    let mut osc = [0.0; 4];
+    for o in f.osc.iter().flatten() {
+        let b = o.derivative_bounds::<4>(&o.extend::<5>(&[o.y0, o.y1]), &[0.0; 5]);
+        for (t, b) in osc.iter_mut().zip(b) {
+            *t += b;
+        }
+    }
     [
         p0 + s * (p1 + s * p2) + m[0] + osc[0],
         p1 + 2.0 * p2 * s + m[1] + osc[1],
@@ -300,7 +311,7 @@ pub(super) fn term_by_term(f: &ExpTrig, s: f64) -> [f64; 3] {
         sum[1] += q * (b * cs - a * sn);
         sum[2] -= q * q * (a * cs + b * sn);
     }
-    if let Some(o) = &f.osc {
+    for o in f.osc.iter().flatten() {
         for (t, y) in sum.iter_mut().zip(o.eval(s)) {
             *t += y;
         }

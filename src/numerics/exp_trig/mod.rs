@@ -7,13 +7,16 @@
 //! f(s) = p0 + p1 s + p2 s² + Σ_{k=1..n} (a_k cos kθ + b_k sin kθ) + y(s),   θ = w (phi + s),
 //! ```
 //!
-//! for local times `s >= 0`, where `y` solves `y'' + 2σ y' + ω0² y = 0`
-//! (`σ >= 0`, `ω0 > 0`; under-, critically or over-damped) with `y(0)`,
-//! `y'(0)` given ([`DampedOscillator`], closed forms in `oscillator.rs`).
-//! Between events, a rod driven through a damped linear actuator has its
-//! relative velocity and acceleration of this form. [`ExpTrig::eval`]
-//! gives `f`, `f'`, `f''` in `O(n)`: one `sin_cos` and the angle-addition
-//! recurrence for the harmonics, the closed form for `y`.
+//! for local times `s >= 0`, where `y = y_1 + y_2` is a sum of at most two
+//! damped oscillators, each solving `y_i'' + 2σ_i y_i' + ω_i² y_i = 0`
+//! (`σ_i >= 0`, `ω_i > 0`; under-, critically or over-damped, each with its
+//! own constants) with `y_i(0)`, `y_i'(0)` given ([`DampedOscillator`],
+//! closed forms in `oscillator.rs`). Between events, a rod driven through a
+//! damped linear actuator has its relative velocity and acceleration of
+//! this form, and a slider on a spring adds the second oscillator.
+//! [`ExpTrig::eval`] gives `f`, `f'`, `f''` in `O(n)`: one `sin_cos` and
+//! the angle-addition recurrence for the harmonics, the closed forms for
+//! the oscillators.
 //!
 //! # Bounds
 //!
@@ -21,14 +24,15 @@
 //! * harmonics: each is `hypot(a_k, b_k) cos(kθ - δ_k)`, so
 //!   `|T^(j)| <= M_j = Σ_k hypot(a_k, b_k) (k w)^j`;
 //! * quadratic: `P'' = 2 p2`, `P''' = 0`;
-//! * oscillator: for every solution `u` of the equation,
+//! * oscillators: for every solution `u` of an oscillator's equation,
 //!   `E_u = ω0² u² + u'²` has `E_u' = -4σ u'² <= 0`, and each `y^(j)` is a
 //!   solution; so for `s >= x`,
 //!   `|y^(j)(s)| <= Y_j(x) = min(sqrt(E_{j-1}(x)), sqrt(E_j(x)) / ω0)`, with
 //!   `E_j = ω0² (y^(j))² + (y^(j+1))²` from `y, y'` at `x` and
 //!   `y^(j+1) = -2σ y^(j) - ω0² y^(j-1)` (each `|y^(i)(x)|` enlarged by its
 //!   rounding bound). One bound for every regime; an undamped oscillator
-//!   attains it.
+//!   attains it. With two oscillators `Y_j` is the sum of their bounds
+//!   (`|y_1^(j) + y_2^(j)| <= |y_1^(j)| + |y_2^(j)|`).
 //!
 //! So `B_j = M_j + Y_j(x)` (plus `2 |p2|` for `j = 2`) bounds `|f^(j)|` on
 //! the piece, `j = 2, 3, 4`.
@@ -47,6 +51,7 @@
 //!   ([`DampedOscillator::rounding`]: `U_j`, `V_j` the sizes of its
 //!   coefficients, `G` the bound of its second basis function, `ν s_max`
 //!   the phase of an under-damped one); `j = 3` through the recurrence;
+//!   each oscillator's, summed;
 //! * the sum of the three parts: `4ε` times their sizes;
 //!
 //! all doubled. Against a term-by-term evaluation (each harmonic from its
@@ -60,8 +65,8 @@
 //! 0. *Scaling.* The coefficients are scaled by a power of two (exact) to
 //!    a largest one in `[1, 2)`; the band is `τ = max(tol, 4 η0)`.
 //! 1. *Pieces, left to right from `s_a`.* The first has the width `1/Ω`,
-//!    `Ω` the largest of the top harmonic's `k w` and the oscillator's
-//!    fastest rate (`ω0`, or `σ + β` over-damped); each next one is 1.25
+//!    `Ω` the largest of the top harmonic's `k w` and the oscillators'
+//!    fastest rates (`ω0`, or `σ + β` over-damped); each next one is 1.25
 //!    times the last (1.5 after an excluded one); a piece no test decides
 //!    is halved and its left half tried next, down to a half-width
 //!    `h_min = max(1e-10 / Ω, 16 ε (|phi| + s_b))`, below which it is a
@@ -210,7 +215,8 @@ use oscillator::Regime;
 const EPS: f64 = f64::EPSILON;
 
 /// `f(s) = p0 + p1 s + p2 s² + Σ_k (a_k cos kθ + b_k sin kθ) + y(s)`,
-/// `θ = w (phi + s)`, `y` a [`DampedOscillator`] (module documentation).
+/// `θ = w (phi + s)`, `y` the sum of at most two [`DampedOscillator`]s
+/// (module documentation).
 /// `a[k-1]`, `b[k-1]` belong to harmonic `k`; a shorter slice counts as
 /// padded with zeros.
 #[derive(Debug, Clone, PartialEq)]
@@ -225,8 +231,8 @@ pub(crate) struct ExpTrig {
     pub a: Vec<f64>,
     /// Sine coefficients.
     pub b: Vec<f64>,
-    /// The damped oscillator's part, if any.
-    pub osc: Option<DampedOscillator>,
+    /// The damped oscillators' parts, each if any (their sum is `y`).
+    pub osc: [Option<DampedOscillator>; 2],
 }
 
 /// An event of [`ExpTrig::first_zero`].
@@ -291,8 +297,13 @@ impl ExpTrig {
             phi: 0.0,
             a: Vec::new(),
             b: Vec::new(),
-            osc,
+            osc: [osc, None],
         }
+    }
+
+    /// The oscillators present.
+    fn oscillators(&self) -> impl Iterator<Item = &DampedOscillator> {
+        self.osc.iter().flatten()
     }
 
     /// `f'` in the same class: the polynomial's, each harmonic's
@@ -314,7 +325,7 @@ impl ExpTrig {
             phi: self.phi,
             a,
             b,
-            osc: self.osc.map(|o| o.derivative()),
+            osc: self.osc.map(|o| o.map(|o| o.derivative())),
         }
     }
 
@@ -342,21 +353,24 @@ impl ExpTrig {
 
     /// `f` and its first three derivatives at `s`.
     pub(crate) fn eval4(&self, s: f64) -> [f64; 4] {
-        let osc = self.osc.as_ref().map(|o| (o, o.regime()));
+        let osc = self
+            .osc
+            .each_ref()
+            .map(|o| o.as_ref().map(|o| (o, o.regime())));
         self.eval4_with(self.poly, osc, |x| x, s).0
     }
 
     /// [`ExpTrig::eval4`] of the function whose quadratic is `poly`, whose
-    /// oscillator is `osc` and whose harmonic coefficients are `scale`d
+    /// oscillators are `osc` and whose harmonic coefficients are `scale`d
     /// (the finder's exactly scaled copy, without copying the harmonics);
-    /// also the oscillator's `y, y', y''` at `s` (zero without one).
+    /// also each oscillator's `y, y', y''` at `s` (zero without one).
     fn eval4_with(
         &self,
         [p0, p1, p2]: [f64; 3],
-        osc: Option<(&DampedOscillator, Regime)>,
+        osc: [Option<(&DampedOscillator, Regime)>; 2],
         scale: impl Fn(f64) -> f64 + Copy,
         s: f64,
-    ) -> ([f64; 4], [f64; 3]) {
+    ) -> ([f64; 4], [[f64; 3]; 2]) {
         let mut out = [p0 + s * (p1 + s * p2), p1 + 2.0 * p2 * s, 2.0 * p2, 0.0];
         let theta = self.w * (self.phi + s);
         let trig = if self.a.len() == self.b.len() {
@@ -369,10 +383,11 @@ impl ExpTrig {
                 theta,
             )
         };
-        let mut y3 = [0.0; 3];
-        if let Some((o, regime)) = osc {
+        let mut y3 = [[0.0; 3]; 2];
+        for (i, o) in osc.into_iter().enumerate() {
+            let Some((o, regime)) = o else { continue };
             let [y, dy, d2y] = o.eval_in(regime, s);
-            y3 = [y, dy, d2y];
+            y3[i] = [y, dy, d2y];
             let d3y = -2.0 * o.sigma * d2y - o.omega0 * o.omega0 * dy;
             for (j, v) in [y, dy, d2y, d3y].into_iter().enumerate() {
                 out[j] += v;
@@ -406,7 +421,7 @@ impl ExpTrig {
             return self.eval_error_bound(s_max)[0].max(other.eval_error_bound(s_max)[0]);
         }
         let m = self.harmonic_bounds();
-        let osc = self.osc.map(|o| o.rounding_and_bounds(s_max.abs()));
+        let osc = summed(oscillator_parts(&self.osc, s_max));
         let mine = self.rounding_with(s_max, self.poly, &m, osc, |x| x)[0];
         let theirs = self.rounding_with(s_max, other.poly, &m, osc, |x| x)[0];
         mine.max(theirs)
@@ -438,20 +453,21 @@ impl ExpTrig {
     /// documentation, "Bounds", (R)).
     fn rounding(&self, s_max: f64) -> [f64; 4] {
         let m = self.harmonic_bounds();
-        let osc = self.osc.map(|o| o.rounding_and_bounds(s_max.abs()));
+        let osc = summed(oscillator_parts(&self.osc, s_max));
         self.rounding_with(s_max, self.poly, &m, osc, |x| x)
     }
 
     /// [`ExpTrig::rounding`] of the function whose quadratic is `poly`,
     /// whose harmonic coefficients are `scale`d (with their bounds `m`) and
-    /// whose oscillator has the rounding and derivative bounds `osc` on
-    /// `[0, s_max]` ([`DampedOscillator::rounding_and_bounds`]).
+    /// whose oscillators have together the rounding and derivative bounds
+    /// `osc` on `[0, s_max]` ([`DampedOscillator::rounding_and_bounds`],
+    /// [`summed`]).
     fn rounding_with(
         &self,
         s_max: f64,
         poly: [f64; 3],
         m: &[f64; 6],
-        osc: Option<([f64; 7], [f64; 7])>,
+        (osc_err, osc_size): ([f64; 7], [f64; 7]),
         scale: impl Fn(f64) -> f64,
     ) -> [f64; 4] {
         let s = s_max.abs();
@@ -471,10 +487,6 @@ impl ExpTrig {
         let phase = 2.5 * (self.phi.abs() + s);
         let poly_size = [p0 + s * (p1 + s * p2), p1 + 2.0 * p2 * s, 2.0 * p2, 0.0];
         let poly_err = [4.0 * poly_size[0], 3.0 * poly_size[1], 0.0, 0.0];
-        let (osc_err, osc_size) = match osc {
-            Some((err, size)) => (err, size),
-            None => ([0.0; 7], [0.0; 7]),
-        };
         let mut eta = [0.0; 4];
         for j in 0..4 {
             let sizes = poly_size[j] + m[j] + osc_size[j];
@@ -532,7 +544,7 @@ impl ExpTrig {
         let harmonics = self.pairs().any(|(a, b)| a != 0.0 || b != 0.0);
         finite
             && (!harmonics || (self.w.is_finite() && self.w > 0.0))
-            && self.osc.as_ref().is_none_or(DampedOscillator::is_valid)
+            && self.oscillators().all(DampedOscillator::is_valid)
     }
 
     /// The search's data: `f` scaled by a power of two (exact) to a largest
@@ -545,14 +557,13 @@ impl ExpTrig {
         if !times_ok || tol.is_nan() || !self.is_valid() {
             return None;
         }
-        let osc = self.osc.filter(|o| o.y0 != 0.0 || o.y1 != 0.0);
+        let osc = self.osc.map(|o| o.filter(|o| o.y0 != 0.0 || o.y1 != 0.0));
         let largest = self
             .poly
             .iter()
             .chain(&self.a)
             .chain(&self.b)
-            .chain(osc.as_ref().map(|o| &o.y0))
-            .chain(osc.as_ref().map(|o| &o.y1))
+            .chain(osc.iter().flatten().flat_map(|o| [&o.y0, &o.y1]))
             .fold(0.0_f64, |m, x| m.max(x.abs()));
         if largest == 0.0 {
             return None;
@@ -560,40 +571,64 @@ impl ExpTrig {
         let scale = Scale::new(-(largest.log2().floor() as i32));
         let by = |x: f64| scale.apply(x);
         let poly = self.poly.map(by);
-        let osc = osc.map(|o| DampedOscillator {
-            y0: by(o.y0),
-            y1: by(o.y1),
-            ..o
+        let osc = osc.map(|o| {
+            o.map(|o| DampedOscillator {
+                y0: by(o.y0),
+                y1: by(o.y1),
+                ..o
+            })
         });
         let constant = poly[1] == 0.0
             && poly[2] == 0.0
-            && osc.is_none()
+            && osc.iter().all(Option::is_none)
             && self.pairs().all(|(a, b)| by(a) == 0.0 && by(b) == 0.0);
         if constant {
             return None;
         }
         let bounds = self.harmonic_bounds_with(by);
-        let osc_parts = osc.map(|o| o.rounding_and_bounds(s_b.abs()));
-        let eta = self.rounding_with(s_b, poly, &bounds, osc_parts, by);
-        let osc_err = osc_parts.map_or([0.0; 7], |(err, _)| err);
+        let osc_parts = oscillator_parts(&osc, s_b);
+        let eta = self.rounding_with(s_b, poly, &bounds, summed(osc_parts), by);
+        let osc_err = osc_parts.map(|p| p.map_or([0.0; 7], |(err, _)| err));
         let tau = by(tol.max(0.0)).max(4.0 * eta[0]);
         let finite = eta
             .iter()
             .chain(&bounds)
-            .chain(&osc_err)
+            .chain(osc_err.iter().flatten())
             .all(|x| x.is_finite());
         finite.then_some(walk::Prepared {
             f: self,
             scale,
             poly,
             osc,
-            regime: osc.map(|o| o.regime()),
+            regime: osc.map(|o| o.map(|o| o.regime())),
             bounds,
             eta,
             osc_err,
             tau,
         })
     }
+}
+
+/// Each oscillator's rounding and derivative bounds on `[0, s_max]`
+/// ([`DampedOscillator::rounding_and_bounds`]).
+fn oscillator_parts(
+    osc: &[Option<DampedOscillator>; 2],
+    s_max: f64,
+) -> [Option<([f64; 7], [f64; 7])>; 2] {
+    osc.map(|o| o.map(|o| o.rounding_and_bounds(s_max.abs())))
+}
+
+/// The oscillators' rounding and derivative bounds added term by term
+/// (zero without any): the bounds of their sum.
+fn summed(parts: [Option<([f64; 7], [f64; 7])>; 2]) -> ([f64; 7], [f64; 7]) {
+    let (mut err, mut size) = ([0.0; 7], [0.0; 7]);
+    for (e, b) in parts.into_iter().flatten() {
+        for j in 0..7 {
+            err[j] += e[j];
+            size[j] += b[j];
+        }
+    }
+    (err, size)
 }
 
 /// Multiplication by `2^e`: [`ldexp`], with the factor computed once.

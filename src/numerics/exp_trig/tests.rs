@@ -25,7 +25,7 @@ fn series(p0: f64, a: &[f64], b: &[f64]) -> ExpTrig {
         phi: 0.0,
         a: a.to_vec(),
         b: b.to_vec(),
-        osc: None,
+        osc: [None, None],
     }
 }
 
@@ -320,12 +320,15 @@ fn the_oscillator_alone_and_its_zeros() {
         phi: 0.0,
         a: Vec::new(),
         b: Vec::new(),
-        osc: Some(DampedOscillator {
-            sigma: 0.0,
-            omega0,
-            y0: 1.0,
-            y1: 0.0,
-        }),
+        osc: [
+            Some(DampedOscillator {
+                sigma: 0.0,
+                omega0,
+                y0: 1.0,
+                y1: 0.0,
+            }),
+            None,
+        ],
     };
     let zero = f.first_zero(0.0, T, 0.0, Start::Clear);
     assert_transversal(zero, 0.5 * PI / omega0, false);
@@ -335,7 +338,7 @@ fn the_oscillator_alone_and_its_zeros() {
         1.5 * PI / omega0,
         true,
     );
-    f.osc = Some(DampedOscillator {
+    f.osc[0] = Some(DampedOscillator {
         sigma: omega0,
         omega0,
         y0: 1.0,
@@ -346,6 +349,45 @@ fn the_oscillator_alone_and_its_zeros() {
         1.0 / omega0,
         false,
     );
+}
+
+#[test]
+fn two_oscillators_beat_and_every_zero_of_the_beat_is_found() {
+    // cos(ω1 s) + cos(ω2 s) = 2 cos((ω1 + ω2) s / 2) cos((ω1 - ω2) s / 2)
+    // (the sum-to-product identity): its zeros are those of either factor,
+    // (k + 1/2) 2π / (ω1 + ω2) and (k + 1/2) 2π / (ω1 - ω2), distinct
+    // here. Two undamped oscillators of 7 w and 3 w, over two periods.
+    let (w1, w2) = (7.0 * w(), 3.0 * w());
+    let undamped = |omega0: f64| DampedOscillator {
+        sigma: 0.0,
+        omega0,
+        y0: 1.0,
+        y1: 0.0,
+    };
+    let f = ExpTrig {
+        poly: [0.0; 3],
+        w: w(),
+        phi: 0.0,
+        a: Vec::new(),
+        b: Vec::new(),
+        osc: [Some(undamped(w1)), Some(undamped(w2))],
+    };
+    let span = 2.0 * T;
+    let mut expected = Vec::new();
+    for q in [w1 + w2, w1 - w2] {
+        let mut k = 0.0;
+        while (k + 0.5) * TAU / q < span {
+            expected.push((k + 0.5) * TAU / q);
+            k += 1.0;
+        }
+    }
+    expected.sort_by(f64::total_cmp);
+    let found = cases::events(&f, 0.0, span, 0.0, 100);
+    assert_eq!(found.len(), expected.len(), "{found:?}");
+    for (c, &z) in found.iter().zip(&expected) {
+        assert!(matches!(c, Crossing::Transversal { .. }), "{c:?}");
+        assert!((c.s() - z).abs() <= 1e-12 * T, "{} against {z}", c.s());
+    }
 }
 
 #[test]
@@ -362,7 +404,7 @@ fn bad_input_gives_no_event_and_no_panic() {
     assert_eq!(search(&no_frequency, 0.0, T, 0.0), None);
     for osc in [(-1.0, 1.0), (1.0, 0.0), (f64::INFINITY, 1.0), (1.0, 1e300)] {
         let mut f = good.clone();
-        f.osc = Some(DampedOscillator {
+        f.osc[1] = Some(DampedOscillator {
             sigma: osc.0,
             omega0: osc.1,
             y0: 1.0,
@@ -417,9 +459,13 @@ fn the_derivatives_are_those_of_the_value() {
     for seed in 0..50 {
         let f = cases::random_function(&mut StdRng::seed_from_u64(seed), 15);
         let scale = f.harmonic_bounds();
-        let osc = f.osc.map_or([0.0; 3], |o| {
-            o.derivative_bounds::<3>(&o.extend::<4>(&[o.y0, o.y1]), &[0.0; 4])
-        });
+        let mut osc = [0.0; 3];
+        for o in f.osc.iter().flatten() {
+            let b = o.derivative_bounds::<3>(&o.extend::<4>(&[o.y0, o.y1]), &[0.0; 4]);
+            for (t, b) in osc.iter_mut().zip(b) {
+                *t += b;
+            }
+        }
         let h = 1e-6 * T;
         for i in 1..10 {
             let s = 0.3 * T * i as f64;

@@ -13,42 +13,43 @@ pub(super) struct Prepared<'f> {
     pub scale: Scale,
     /// The scaled quadratic.
     pub poly: [f64; 3],
-    /// The scaled oscillator (`None` also where `f`'s is zero).
-    pub osc: Option<DampedOscillator>,
-    /// Its regime.
-    pub regime: Option<Regime>,
+    /// The scaled oscillators (`None` also where `f`'s is zero).
+    pub osc: [Option<DampedOscillator>; 2],
+    /// Their regimes.
+    pub regime: [Option<Regime>; 2],
     /// `M_j = Σ_k hypot(a_k, b_k) (k w)^j`, `j < 6`.
     pub bounds: [f64; 6],
     /// Rounding bounds `η_j` of the computed `f^(j)`, `j <= 3`, on `[0, s_b]`.
     pub eta: [f64; 4],
-    /// Rounding bounds of the computed oscillator derivatives, `j <= 6`.
-    pub osc_err: [f64; 7],
+    /// Rounding bounds of each oscillator's computed derivatives, `j <= 6`.
+    pub osc_err: [[f64; 7]; 2],
     /// The band `τ`: `|f| <= τ` at a critical point is a tangency.
     pub tau: f64,
 }
 
 impl Prepared<'_> {
     /// The scaled `f` and its first three derivatives at `s`, and its
-    /// oscillator's `y, y', y''`: the values, bit for bit, of
+    /// oscillators' `y, y', y''`: the values, bit for bit, of
     /// [`ExpTrig::eval4`] on the scaled copy.
-    fn eval4(&self, s: f64) -> ([f64; 4], [f64; 3]) {
+    fn eval4(&self, s: f64) -> ([f64; 4], [[f64; 3]; 2]) {
         let scale = self.scale;
-        self.f.eval4_with(
-            self.poly,
-            self.osc.as_ref().zip(self.regime),
-            move |x| scale.apply(x),
-            s,
-        )
+        self.f
+            .eval4_with(self.poly, self.oscillators(), move |x| scale.apply(x), s)
+    }
+
+    /// Each oscillator with its regime.
+    fn oscillators(&self) -> [Option<(&DampedOscillator, Regime)>; 2] {
+        [0, 1].map(|i| self.osc[i].as_ref().zip(self.regime[i]))
     }
 }
 
-/// Computed `f`, `f'`, `f''`, `f'''` at `s`, and the oscillator's
+/// Computed `f`, `f'`, `f''`, `f'''` at `s`, and each oscillator's
 /// `y, y', y''`.
 #[derive(Debug, Clone, Copy)]
 struct Point {
     s: f64,
     d: [f64; 4],
-    y: [f64; 3],
+    y: [[f64; 3]; 2],
 }
 
 /// How many of the last points the walk keeps: a halved piece's left half
@@ -165,12 +166,12 @@ impl<'a> Walk<'a> {
             .filter(|&(_, (a, b))| p.scale.apply(a) != 0.0 || p.scale.apply(b) != 0.0)
             .last()
             .map_or(0.0, |(i, _)| (i + 1) as f64 * f.w);
-        let osc_rate = p.osc.map_or(0.0, |o| {
-            if o.sigma > o.omega0 {
+        let osc_rate = p.osc.iter().flatten().fold(0.0_f64, |r, o| {
+            r.max(if o.sigma > o.omega0 {
                 o.sigma + ((o.sigma - o.omega0) * (o.sigma + o.omega0)).sqrt()
             } else {
                 o.omega0
-            }
+            })
         });
         let rate = top.max(osc_rate).max(1.0 / (hi - lo));
         let resolution = 2.0 * EPS * (f.phi.abs() + hi.abs());
@@ -185,7 +186,7 @@ impl<'a> Walk<'a> {
             recent: [Point {
                 s: f64::NAN,
                 d: [0.0; 4],
-                y: [0.0; 3],
+                y: [[0.0; 3]; 2],
             }; RECENT],
             recent_s: [u64::MAX; RECENT],
             next_recent: 0,
@@ -247,17 +248,21 @@ impl<'a> Walk<'a> {
         }
     }
 
-    /// Bounds on `|y^(j)|`, `j <= 4`, for `s >= x` (zero without an
-    /// oscillator).
+    /// Bounds on `|y^(j)|`, `j <= 4`, for `s >= x`: each oscillator's,
+    /// summed (zero without one).
     fn osc_bounds(&self, x: f64) -> [f64; 5] {
-        match self.p.osc.as_ref().zip(self.p.regime) {
-            None => [0.0; 5],
-            Some((o, regime)) => {
-                let y = self.recent(x).map_or_else(|| o.eval_in(regime, x), |p| p.y);
-                let u = o.extend::<6>(&y);
-                o.derivative_bounds::<5>(&u, &self.p.osc_err[..6])
+        let mut out = [0.0; 5];
+        let recent = self.recent(x);
+        for (i, osc) in self.p.oscillators().into_iter().enumerate() {
+            let Some((o, regime)) = osc else { continue };
+            let y = recent.map_or_else(|| o.eval_in(regime, x), |p| p.y[i]);
+            let u = o.extend::<6>(&y);
+            let b = o.derivative_bounds::<5>(&u, &self.p.osc_err[i][..6]);
+            for (o, b) in out.iter_mut().zip(b) {
+                *o += b;
             }
         }
+        out
     }
 
     /// The first event in `(lo, hi]` (module documentation, "Method").
