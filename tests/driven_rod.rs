@@ -113,18 +113,8 @@ fn with_the_reaction_the_fixed_step_reference_converges_at_first_order() {
         .map(|r| (r.report.indicators.v_inf - exact).abs())
         .collect();
     eprintln!("v_inf {exact:e}; errors {errors:?}");
-    let points: Vec<(f64, f64)> = steps
-        .iter()
-        .zip(&errors)
-        .map(|(s, e)| (-(*s as f64).ln(), e.ln()))
-        .collect();
-    let n = points.len() as f64;
-    let (mx, my) = (
-        points.iter().map(|p| p.0).sum::<f64>() / n,
-        points.iter().map(|p| p.1).sum::<f64>() / n,
-    );
-    let slope = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
-        / points.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+    let h: Vec<f64> = steps.iter().map(|&s| 1.0 / f64::from(s)).collect();
+    let slope = common::log_slope(&h, &errors);
     assert!(
         (0.7..1.5).contains(&slope),
         "order {slope}, errors {errors:?}"

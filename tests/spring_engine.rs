@@ -1,6 +1,8 @@
 //! The exact engine with a spring against the slider (docs/model.md
 //! section 17): closed forms with the rod at rest.
 
+mod common;
+
 use stickslip::engine::{DrivenEngine, Mode, PeriodEngine, PeriodStart};
 use stickslip::motor::Motor;
 use stickslip::observer::Trajectory;
@@ -218,19 +220,7 @@ fn the_fixed_step_engine_with_a_spring_converges_at_first_order() {
         hs.push(1.0 / f64::from(steps));
         errors.push(dx.max(dv));
     }
-    let (lx, ly): (Vec<f64>, Vec<f64>) = hs
-        .iter()
-        .zip(&errors)
-        .map(|(h, e)| (h.ln(), e.ln()))
-        .unzip();
-    let n = lx.len() as f64;
-    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
-    let slope = lx
-        .iter()
-        .zip(&ly)
-        .map(|(x, y)| (x - mx) * (y - my))
-        .sum::<f64>()
-        / lx.iter().map(|x| (x - mx).powi(2)).sum::<f64>();
+    let slope = common::log_slope(&hs, &errors);
     eprintln!("errors {errors:?}, order {slope:.2}");
     assert!(slope >= 0.8, "order {slope}: errors {errors:?}");
     assert!(errors.last().unwrap() < &1e-3, "{errors:?}");

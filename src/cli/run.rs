@@ -130,6 +130,13 @@ pub(crate) fn run(args: RunArgs, streams: &mut Streams<'_>) -> Result<(), Failur
                 .to_owned(),
         );
     }
+    if args.sensitivities && scene.spring.is_some() {
+        return Err(
+            "--sensitivities: with a spring ([spring]) v_inf does not apply, and the \
+             sensitivities are those of v_inf"
+                .to_owned(),
+        );
+    }
     let outcome = simulation::simulate(&scene).map_err(|e| e.to_string())?;
     if args.sensitivities && matches!(scene.rod, crate::actuator::RodModel::Driven(_)) {
         // A driven rod: the real actuator's parameters, the voltage held.

@@ -173,6 +173,21 @@ pub(crate) fn prescribed_only(scene: &Scene, what: &str) -> Result<(), ParamErro
     }
 }
 
+/// `v_inf`'s sensitivities need net travel: refused with a spring
+/// against the slider (docs/model.md section 17).
+fn travel_only(scene: &Scene, what: &str) -> Result<(), ParamError> {
+    match scene.spring {
+        None => Ok(()),
+        Some(_) => Err(ParamError::Inconsistent {
+            field: "spring".to_owned(),
+            reason: format!(
+                "{what} are those of v_inf, which does not apply against a spring (the slider \
+                 oscillates about its equilibrium)"
+            ),
+        }),
+    }
+}
+
 /// [`run`] with the default options.
 pub(crate) fn simulate(scene: &Scene) -> Result<Outcome, Error> {
     run(scene, &RunOptions::default())
@@ -347,6 +362,7 @@ impl RunReport {
             }
             .into());
         };
+        travel_only(scene, "the actuator's sensitivities")?;
         let (signal, motor) = build(scene)?;
         let rod = driven_rod(scene, spec, &signal, &motor)?;
         crate::sensitivity::of_driven_period(&rod, &motor, self.period, segments).map_err(
@@ -367,6 +383,7 @@ impl RunReport {
     /// rod's: [`RunReport::actuator_sensitivities`]).
     pub fn sensitivities(&self, scene: &Scene) -> Result<crate::sensitivity::Sensitivities, Error> {
         prescribed_only(scene, "the sensitivities")?;
+        travel_only(scene, "the sensitivities")?;
         if scene.run.engine != EngineKind::Event {
             return Err(SimulationError::NoSensitivity(
                 "they are exact for the event engine only (run.engine = \"event\")".to_owned(),

@@ -74,6 +74,19 @@ pub fn run(scene: &Scene) -> RunReport {
         .expect("scene runs")
 }
 
+/// The least-squares slope of `log e` against `log h`: the observed order
+/// of convergence of errors `e` at steps `h`.
+pub fn log_slope(h: &[f64], e: &[f64]) -> f64 {
+    let (lx, ly): (Vec<f64>, Vec<f64>) = h.iter().zip(e).map(|(h, e)| (h.ln(), e.ln())).unzip();
+    let n = lx.len() as f64;
+    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
+    lx.iter()
+        .zip(&ly)
+        .map(|(x, y)| (x - mx) * (y - my))
+        .sum::<f64>()
+        / lx.iter().map(|x| (x - mx).powi(2)).sum::<f64>()
+}
+
 /// Runs a scene's motor and outputs with an arbitrary signal.
 pub fn run_signal(scene: &Scene, signal: &Signal) -> RunReport {
     let motor = Motor::new(scene.motor).expect("valid motor");
