@@ -326,8 +326,12 @@ def sweep(
         ``level``, ``sqrt_kappa``, ``kappa``, ``frequency``, ``f_max``,
         ``harmonics``, ``sigma``, ``stroke``, ``duty``, ``mu_static``,
         ``mu_dynamic``, ``contact_force``, ``slider_mass``,
-        ``extra_acceleration``. The cases are their cartesian product, the
-        last axis (in that order) varying fastest.
+        ``extra_acceleration``, and for a scene with a ``spring`` table
+        ``spring.stiffness``, ``spring.damping``, ``spring.gap``,
+        ``spring.preload`` (dotted names, as TOML's dotted keys; the
+        DataFrame then has the spring's reading as columns,
+        ``spring_force_mean`` and on). The cases are their cartesian
+        product, the last axis (in that order) varying fastest.
     jobs : int, optional
         Worker threads (default and maximum: the available CPUs).
     shard : (i, n), optional
@@ -353,7 +357,7 @@ def sweep(
     """
     head, columns = _stickslip.sweep(
         scene,
-        dict(axes),
+        _axes_table(axes),
         overrides or None,
         list(indicators) if indicators is not None else None,
         jobs,
@@ -361,6 +365,22 @@ def sweep(
         timing,
     )
     return _sweep_frame(head, columns)
+
+
+def _axes_table(axes: Mapping[str, Sequence[Any]]) -> Dict[str, Any]:
+    """The ``[axes]`` table of ``axes``: a dotted name (``spring.stiffness``)
+    is a key of a nested table, as a TOML dotted key is."""
+    table: Dict[str, Any] = {k: v for k, v in axes.items() if "." not in k}
+    for name, values in axes.items():
+        if "." in name:
+            head, rest = name.split(".", 1)
+            inner = table.get(head, {})
+            if not isinstance(inner, Mapping):
+                # Left for the sweep to refuse, naming it.
+                table[name] = values
+                continue
+            table[head] = {**inner, rest: values}
+    return table
 
 
 def _options(**flags: Any) -> list:

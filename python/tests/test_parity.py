@@ -212,6 +212,26 @@ def test_sweep_shard_equals_cli_shard_and_shards_make_the_whole(tmp_path):
     pd.testing.assert_frame_equal(parts, whole, check_exact=True)
 
 
+def test_spring_sweep_dataframe_equals_cli_csv(tmp_path):
+    scene = tmp_path / "spring.toml"
+    scene.write_text(
+        '[signal]\nkind = "fourier"\nstroke = 25e-6\nsqrt_kappa = 6.0\nharmonics = 2\n'
+        'sigma = true\n[spring]\nstiffness = 1e3\n[outputs]\nindicators = ["friction_energy"]\n'
+    )
+    axes = {"spring.stiffness": [10.0, 1e3], "spring.preload": [0.0, 0.01]}
+    grid = tmp_path / "springs.toml"
+    grid.write_text(
+        f'base = "{scene.as_posix()}"\n[axes]\n'
+        + "".join(f"{k} = {json.dumps(v)}\n" for k, v in axes.items())
+    )
+    out = tmp_path / "springs.csv"
+    cli("sweep", grid, "--no-timing", "--quiet", "-o", out)
+    frame = stickslip.sweep(scene, axes, timing=False)
+    same_as_csv(frame, out)
+    assert frame["spring.stiffness"].tolist() == [10.0, 10.0, 1e3, 1e3]
+    assert frame["spring_force_mean"].notna().all()
+
+
 def test_trajectory_equals_cli_trajectory(tmp_path):
     scene = ROOT / "examples" / "scenes" / "stick_heavy.toml"
     r = stickslip.run(scene)

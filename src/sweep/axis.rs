@@ -4,6 +4,7 @@
 use crate::error::ParamError;
 use crate::scene::Scene;
 use crate::signal::{Drive, MAX_HARMONICS, SignalSpec};
+use crate::spring::SpringEnd;
 use ordered_float::OrderedFloat;
 use std::fmt;
 use std::str::FromStr;
@@ -39,11 +40,20 @@ pub enum SweepAxis {
     SliderMass,
     /// `g_t` (m/s^2).
     ExtraAcceleration,
+    /// `k` (N/m) of the base scene's `[spring]`.
+    SpringStiffness,
+    /// `b` (N s/m) of the base scene's `[spring]`, a tied one (a free end
+    /// takes only 0).
+    SpringDamping,
+    /// `x_gap` (m) of the base scene's free-ended `[spring]`.
+    SpringGap,
+    /// `F_p` (N) of the base scene's tied `[spring]`.
+    SpringPreload,
 }
 
 impl SweepAxis {
     /// Every axis, in case order (the first varies slowest).
-    pub const ALL: [SweepAxis; 14] = [
+    pub const ALL: [SweepAxis; 18] = [
         SweepAxis::Level,
         SweepAxis::SqrtKappa,
         SweepAxis::Kappa,
@@ -58,6 +68,10 @@ impl SweepAxis {
         SweepAxis::ContactForce,
         SweepAxis::SliderMass,
         SweepAxis::ExtraAcceleration,
+        SweepAxis::SpringStiffness,
+        SweepAxis::SpringDamping,
+        SweepAxis::SpringGap,
+        SweepAxis::SpringPreload,
     ];
 
     /// The name in sweep files and output columns.
@@ -77,6 +91,10 @@ impl SweepAxis {
             SweepAxis::ContactForce => "contact_force",
             SweepAxis::SliderMass => "slider_mass",
             SweepAxis::ExtraAcceleration => "extra_acceleration",
+            SweepAxis::SpringStiffness => "spring.stiffness",
+            SweepAxis::SpringDamping => "spring.damping",
+            SweepAxis::SpringGap => "spring.gap",
+            SweepAxis::SpringPreload => "spring.preload",
         }
     }
 
@@ -95,10 +113,14 @@ impl SweepAxis {
                 }
             }
             (SweepAxis::Sigma, AxisValue::Bool(_)) => Ok(()),
-            (SweepAxis::MuStatic | SweepAxis::MuDynamic, AxisValue::Number(x)) => {
-                ParamError::non_negative(field, x).map(drop)
-            }
-            (SweepAxis::ExtraAcceleration, AxisValue::Number(x)) => {
+            (
+                SweepAxis::MuStatic
+                | SweepAxis::MuDynamic
+                | SweepAxis::SpringDamping
+                | SweepAxis::SpringGap,
+                AxisValue::Number(x),
+            ) => ParamError::non_negative(field, x).map(drop),
+            (SweepAxis::ExtraAcceleration | SweepAxis::SpringPreload, AxisValue::Number(x)) => {
                 ParamError::finite(field, x).map(drop)
             }
             (SweepAxis::Duty, AxisValue::Number(x)) => {
@@ -138,10 +160,51 @@ impl SweepAxis {
         self.check(self.name(), value).is_ok()
     }
 
+    /// True for the axes of the `[spring]` table.
+    fn is_spring(self) -> bool {
+        matches!(
+            self,
+            SweepAxis::SpringStiffness
+                | SweepAxis::SpringDamping
+                | SweepAxis::SpringGap
+                | SweepAxis::SpringPreload
+        )
+    }
+
+    /// Why this axis cannot vary the base scene, or `None` if it can: a
+    /// spring axis needs the base scene's `[spring]`, of the kind that
+    /// takes the field (as the `[spring]` table refuses `gap` on a tied
+    /// spring and `preload` on a free end); a motor axis always fits; a
+    /// signal axis must fit the base signal (`unfit_for_signal`).
+    pub(super) fn unfit_for(self, base: &Scene) -> Option<String> {
+        if !self.is_spring() {
+            return self.unfit_for_signal(&base.signal);
+        }
+        let Some(spring) = &base.spring else {
+            return Some(format!(
+                "the base scene has no [spring]: give it one to vary {}",
+                self.name()
+            ));
+        };
+        match (self, spring.end) {
+            (SweepAxis::SpringGap, SpringEnd::Tied { .. }) => Some(
+                "applies to a free end (spring.tied = false); the base scene's spring is tied, \
+                 which takes spring.preload"
+                    .to_owned(),
+            ),
+            (SweepAxis::SpringPreload, SpringEnd::Free { .. }) => Some(
+                "applies to a tied spring (spring.tied = true); the base scene's spring has a \
+                 free end, which takes spring.gap"
+                    .to_owned(),
+            ),
+            _ => None,
+        }
+    }
+
     /// Why this axis cannot vary the base signal, or `None` if it can (a
     /// motor axis always can; a signal axis cannot vary a voltage's
     /// response).
-    pub(super) fn unfit_for(self, signal: &SignalSpec) -> Option<String> {
+    fn unfit_for_signal(self, signal: &SignalSpec) -> Option<String> {
         let kind = match signal {
             SignalSpec::Fourier { .. } => return None,
             SignalSpec::Ideal(_) => "ideal",
@@ -202,6 +265,15 @@ impl SweepAxis {
     pub(super) fn apply(self, scene: &mut Scene, value: AxisValue) {
         let motor = &mut scene.motor;
         let number = value.as_f64().unwrap_or(f64::NAN);
+        if let Some(spring) = scene.spring.as_mut() {
+            match (self, &mut spring.end) {
+                (SweepAxis::SpringStiffness, _) => spring.stiffness = number,
+                (SweepAxis::SpringDamping, _) => spring.damping = number,
+                (SweepAxis::SpringGap, SpringEnd::Free { gap }) => *gap = number,
+                (SweepAxis::SpringPreload, SpringEnd::Tied { preload }) => *preload = number,
+                _ => {}
+            }
+        }
         match (self, &mut scene.signal) {
             (SweepAxis::MuStatic, _) => motor.mu_static = number,
             (SweepAxis::MuDynamic, _) => motor.mu_dynamic = number,

@@ -83,6 +83,21 @@ pub struct AxesTable {
     pub contact_force: Option<Vec<f64>>,
     pub slider_mass: Option<Vec<f64>>,
     pub extra_acceleration: Option<Vec<f64>>,
+    /// `spring.stiffness = [...]` and the other fields of the base scene's
+    /// `[spring]` (TOML's dotted keys, or an `[axes.spring]` table).
+    pub spring: Option<SpringAxesTable>,
+}
+
+/// The `[axes.spring]` table: the fields of the base scene's `[spring]`,
+/// each a list of values.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct SpringAxesTable {
+    pub stiffness: Option<Vec<f64>>,
+    pub damping: Option<Vec<f64>>,
+    pub gap: Option<Vec<f64>>,
+    pub preload: Option<Vec<f64>>,
 }
 
 impl AxesTable {
@@ -92,6 +107,8 @@ impl AxesTable {
             v.as_ref()
                 .map(|v| v.iter().map(|x| AxisValue::Number(*x)).collect::<Vec<_>>())
         };
+        let no_spring = SpringAxesTable::default();
+        let spring = self.spring.as_ref().unwrap_or(&no_spring);
         SweepAxis::ALL
             .into_iter()
             .filter_map(|axis| {
@@ -116,6 +133,10 @@ impl AxesTable {
                     SweepAxis::ContactForce => numbers(&self.contact_force),
                     SweepAxis::SliderMass => numbers(&self.slider_mass),
                     SweepAxis::ExtraAcceleration => numbers(&self.extra_acceleration),
+                    SweepAxis::SpringStiffness => numbers(&spring.stiffness),
+                    SweepAxis::SpringDamping => numbers(&spring.damping),
+                    SweepAxis::SpringGap => numbers(&spring.gap),
+                    SweepAxis::SpringPreload => numbers(&spring.preload),
                 };
                 values.map(|v| (axis, v))
             })
@@ -288,7 +309,7 @@ impl Sweep {
                     reason: "is empty: give at least one value".to_owned(),
                 }));
             }
-            if let Some(reason) = axis.unfit_for(&base.signal) {
+            if let Some(reason) = axis.unfit_for(&base) {
                 return Err(param(ParamError::Inconsistent { field, reason }));
             }
             for (i, value) in values.iter().enumerate() {

@@ -42,6 +42,16 @@
 //! | `contact_force` | `motor.contact_force` | > 0 |
 //! | `slider_mass` | `motor.slider_mass` | > 0 |
 //! | `extra_acceleration` | `motor.extra_acceleration` | finite |
+//! | `spring.stiffness` | `spring.stiffness`, `k` (N/m) | > 0 |
+//! | `spring.damping` | `spring.damping`, `b` (N s/m) | >= 0; 0 with a free end |
+//! | `spring.gap` | `spring.gap`, `x_gap` (m), a free end | >= 0 |
+//! | `spring.preload` | `spring.preload`, `F_p` (N), a tied spring | finite |
+//!
+//! The `spring.*` axes (TOML's dotted keys, `spring.stiffness = [...]`
+//! under `[axes]`, or an `[axes.spring]` table) vary the base scene's
+//! `[spring]` (docs/model.md section 17) and need one: `spring.gap` only
+//! on a free end and `spring.preload` only on a tied spring, as the
+//! `[spring]` table takes them.
 //!
 //! At most one of `level`, `sqrt_kappa`, `kappa`, `frequency` and `f_max`
 //! may be given: each replaces the base scene's drive
@@ -82,6 +92,14 @@
 //!   in `stickslip run --json`) is followed by `stiction_fraction_steady`
 //!   and `velocity_per_power` by `apparent_power` (VA); empty without a
 //!   steady state;
+//! * with a `[spring]` in the base scene only, its reading (as in
+//!   `stickslip run --json`): `spring_force_mean`, `spring_force_max`,
+//!   `spring_force_min` (N), `spring_position_mean` (m),
+//!   `contact_fraction`, `orbit_periods` (empty where no orbit locked),
+//!   `spring_reading_periods`, and where no orbit locked
+//!   `spring_force_mean_range_low` and `spring_force_mean_range_high` (N,
+//!   the least and largest mean force of a single period); with a spring
+//!   `error_v_inf` is empty (`v_inf` does not apply);
 //! * `f0` (Hz): the case's drive frequency, from its scene (also in the
 //!   row of a failed case); `period` (s), `startup_periods`, `periods_simulated`, `events_total`
 //!   (events of the start-up), `last_v_p` (m/s, for `run-away` and
@@ -187,12 +205,13 @@ mod execute;
 mod grid;
 mod layout;
 mod merge;
+mod spring_columns;
 mod table;
 
 pub use execute::{CaseResult, Summary, SweepOptions, execute, run_case, run_cases};
 pub use grid::{
-    AxesTable, AxisKey, AxisValue, Case, MAX_CASES, Shard, Sweep, SweepAxis, SweepFile,
-    SweepFormat, SweepOutputsTable, load, load_with,
+    AxesTable, AxisKey, AxisValue, Case, MAX_CASES, Shard, SpringAxesTable, Sweep, SweepAxis,
+    SweepFile, SweepFormat, SweepOutputsTable, load, load_with,
 };
 pub use merge::{MISSING_LISTED, MergeSummary, merge};
 

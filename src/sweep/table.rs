@@ -3,6 +3,7 @@
 //! written), for resuming and merging.
 
 use super::grid::{AxisKey, AxisValue, Case, MAX_CASES, Sweep, SweepAxis, SweepFormat};
+use super::spring_columns::SpringColumn;
 use crate::error::Error;
 use crate::indicator::Indicator;
 use crate::motor::Motor;
@@ -108,6 +109,9 @@ pub(super) fn column_kinds(sweep: &Sweep, timing: bool) -> Vec<Column> {
             }
         }
     }
+    if sweep.base().spring.is_some() {
+        columns.extend(SpringColumn::ALL.map(Column::Spring));
+    }
     columns.extend([
         Column::F0,
         Column::Period,
@@ -135,7 +139,7 @@ pub(super) enum Cell {
 }
 
 impl Cell {
-    fn number(x: Option<f64>) -> Cell {
+    pub(super) fn number(x: Option<f64>) -> Cell {
         match x {
             Some(x) if x.is_finite() => Cell::Number(x),
             _ => Cell::Empty,
@@ -195,6 +199,7 @@ pub(super) enum Column {
     Indicator(Indicator),
     StictionSteady,
     ApparentPower,
+    Spring(SpringColumn),
     F0,
     Period,
     StartupPeriods,
@@ -218,6 +223,7 @@ impl Column {
             Column::Indicator(i) => i.name(),
             Column::StictionSteady => "stiction_fraction_steady",
             Column::ApparentPower => "apparent_power",
+            Column::Spring(s) => s.name(),
             Column::F0 => "f0",
             Column::Period => "period",
             Column::StartupPeriods => "startup_periods",
@@ -256,6 +262,7 @@ impl Column {
             .chain([Column::Failure])
             .chain(SweepAxis::ALL.map(Column::Axis))
             .chain(Indicator::ALL.map(Column::Indicator))
+            .chain(SpringColumn::ALL.map(Column::Spring))
             .find(|c| c.name() == name)
     }
 
@@ -271,17 +278,18 @@ impl Column {
             Column::Indicator(i) => 30 + 2 * indicator(i),
             Column::StictionSteady => 31 + 2 * indicator(Indicator::StictionFraction),
             Column::ApparentPower => 31 + 2 * indicator(Indicator::VelocityPerPower),
-            Column::F0 => 49,
-            Column::Period => 50,
-            Column::StartupPeriods => 51,
-            Column::PeriodsSimulated => 52,
-            Column::EventsTotal => 53,
-            Column::LastVp => 54,
-            Column::WallTime => 55,
-            Column::SetupTime => 56,
-            Column::SimulationTime => 57,
-            Column::ErrorVInf => 58,
-            Column::Failure => 59,
+            Column::Spring(s) => 50 + s.position(),
+            Column::F0 => 60,
+            Column::Period => 61,
+            Column::StartupPeriods => 62,
+            Column::PeriodsSimulated => 63,
+            Column::EventsTotal => 64,
+            Column::LastVp => 65,
+            Column::WallTime => 66,
+            Column::SetupTime => 67,
+            Column::SimulationTime => 68,
+            Column::ErrorVInf => 69,
+            Column::Failure => 70,
         }
     }
 
@@ -320,6 +328,7 @@ impl Column {
             Column::ApparentPower => {
                 Cell::number(report.and_then(|r| r.power.as_ref().map(|p| p.apparent_power)))
             }
+            Column::Spring(s) => s.cell(outcome),
             Column::Period => Cell::number(
                 report
                     .map(|r| r.period)
@@ -336,7 +345,12 @@ impl Column {
             Column::WallTime => Cell::number(Some(times.wall.as_secs_f64())),
             Column::SetupTime => Cell::number(Some(times.setup.as_secs_f64())),
             Column::SimulationTime => Cell::number(Some(times.simulation.as_secs_f64())),
-            Column::ErrorVInf => Cell::number(report.and_then(|r| r.error.v_inf)),
+            // v_inf does not apply against a spring, nor its error.
+            Column::ErrorVInf => Cell::number(
+                report
+                    .filter(|_| case.scene.spring.is_none())
+                    .and_then(|r| r.error.v_inf),
+            ),
             Column::Case | Column::Axis(_) | Column::SceneHash | Column::F0 | Column::Failure => {
                 unreachable!("handled above")
             }
@@ -352,6 +366,7 @@ impl Column {
             Column::StartupPeriods | Column::PeriodsSimulated | Column::EventsTotal => {
                 "a whole number or nothing"
             }
+            Column::Spring(s) if s.counts() => "a whole number or nothing",
             Column::SceneHash => "16 hexadecimal digits",
             Column::Failure => "text or nothing",
             Column::Regime => {
@@ -375,6 +390,8 @@ impl Column {
                 Column::StartupPeriods | Column::PeriodsSimulated | Column::EventsTotal,
                 Cell::Unsigned(_) | Cell::Empty,
             ) => true,
+            (Column::Spring(s), Cell::Unsigned(_) | Cell::Empty) if s.counts() => true,
+            (Column::Spring(s), _) if s.counts() => false,
             (Column::SceneHash, Cell::Text(s)) => {
                 s.len() == 16 && s.bytes().all(|b| b.is_ascii_hexdigit())
             }
@@ -398,7 +415,8 @@ impl Column {
                 | Column::WallTime
                 | Column::SetupTime
                 | Column::SimulationTime
-                | Column::ErrorVInf,
+                | Column::ErrorVInf
+                | Column::Spring(_),
                 Cell::Number(x),
             ) => x.is_finite(),
             (
@@ -411,7 +429,8 @@ impl Column {
                 | Column::WallTime
                 | Column::SetupTime
                 | Column::SimulationTime
-                | Column::ErrorVInf,
+                | Column::ErrorVInf
+                | Column::Spring(_),
                 Cell::Empty,
             ) => true,
             _ => false,
@@ -433,6 +452,9 @@ impl Column {
                 | Column::StartupPeriods
                 | Column::PeriodsSimulated
                 | Column::EventsTotal => {
+                    text.parse().map_or(Cell::Text(text.into()), Cell::Unsigned)
+                }
+                Column::Spring(s) if s.counts() => {
                     text.parse().map_or(Cell::Text(text.into()), Cell::Unsigned)
                 }
                 Column::Axis(SweepAxis::Harmonics) => {
@@ -462,6 +484,9 @@ impl Column {
                 | Column::EventsTotal,
                 Value::Number(n),
             ) => n.as_u64().map_or(Cell::Empty, Cell::Unsigned),
+            (Column::Spring(s), Value::Number(n)) if s.counts() => {
+                n.as_u64().map_or(Cell::Empty, Cell::Unsigned)
+            }
             (Column::Axis(SweepAxis::Harmonics), Value::Number(n)) => {
                 n.as_i64().map_or(Cell::Empty, Cell::Integer)
             }
