@@ -74,8 +74,7 @@ use crate::signal::{RodState, Signal};
 use crate::spring::Spring;
 use segment::{ModeFunctions, StickExit};
 use slider::{SliderMotion, SpringLaw};
-use std::borrow::Cow;
-use stuck::StuckOnSpring;
+use stuck::{StuckOnSpring, stick_functions_of};
 
 /// The exact engine for a rod driven through the actuator.
 #[derive(Debug, Clone)]
@@ -108,19 +107,6 @@ fn functions_of(modes: &[ModeFunctions; 3], mode: Mode) -> &ModeFunctions {
         Load::SlipForward => &modes[0],
         Load::SlipBackward => &modes[1],
         Load::Stuck => &modes[2],
-    }
-}
-
-/// [`DrivenEngine::stick_functions`] from the engine's modes and its stick
-/// mode on the spring.
-fn stick_functions_of<'m>(
-    modes: &'m [ModeFunctions; 3],
-    on_spring: Option<&'m StuckOnSpring>,
-    (contact, delta): (bool, f64),
-) -> Cow<'m, ModeFunctions> {
-    match on_spring {
-        Some(stuck) if contact => stuck.at(delta),
-        _ => Cow::Borrowed(functions_of(modes, Mode::Stick)),
     }
 }
 
@@ -239,34 +225,6 @@ impl<'s> DrivenEngine<'s> {
 
     fn functions(&self, mode: Mode) -> &ModeFunctions {
         functions_of(&self.modes, mode)
-    }
-
-    /// The stick mode's functions with the slider at `place` = (in
-    /// contact, `x_S - x_R`): with a spring in contact against a rod that
-    /// feels the slider, the stuck system's with the spring (`stuck.rs`).
-    fn stick_functions(&self, place: (bool, f64)) -> Cow<'_, ModeFunctions> {
-        stick_functions_of(&self.modes, self.stuck_on_spring.as_ref(), place)
-    }
-
-    /// The closed forms of `segment`'s mode, in contact with the spring
-    /// where `contact` says so. Where it does not say, a stick segment's
-    /// slider is in contact with a free end where it is beyond the end
-    /// somewhere on the segment (its ends are events, so it is on one side
-    /// throughout).
-    fn segment_functions(
-        &self,
-        segment: &Segment,
-        contact: Option<bool>,
-    ) -> Cow<'_, ModeFunctions> {
-        match (segment.mode, &self.spring) {
-            (Mode::Stick, Some(law)) => {
-                let x = segment.slider_origin + segment.slider_start.x;
-                let x_end = segment.slider_origin + segment.slider_end.x;
-                let contact = contact.unwrap_or_else(|| law.spring.in_contact(x.max(x_end)));
-                self.stick_functions((contact, x - segment.rod_start.x))
-            }
-            (mode, _) => Cow::Borrowed(self.functions(mode)),
-        }
     }
 
     /// The band the stuck system's acceleration lies in at phase `tau` for

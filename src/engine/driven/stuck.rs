@@ -18,11 +18,17 @@
 //! `omega_0^2 = (c + k) / (M + m_s)`. Out of contact (a free end) the
 //! stick mode is the one without the spring. Without the reaction the rod
 //! does not feel the slider, and the spring acts on the slider alone.
+//!
+//! The engine picks a stick phase's functions here, from the slider's
+//! place (in contact, `delta`), and a recorded segment's from the slider's
+//! position in it.
 
 use std::borrow::Cow;
 
 use super::segment::ModeFunctions;
+use super::{DrivenEngine, functions_of};
 use crate::actuator::{DrivenRod, ModeResponse};
+use crate::engine::{Mode, Segment};
 use crate::motor::Motor;
 use crate::power::ActuatorParams;
 use crate::spring::Spring;
@@ -66,6 +72,49 @@ impl StuckOnSpring {
             Cow::Borrowed(&self.base)
         } else {
             Cow::Owned(self.base.shifted(self.shift * delta))
+        }
+    }
+}
+
+/// [`DrivenEngine::stick_functions`] from the engine's modes and its stick
+/// mode on the spring.
+pub(super) fn stick_functions_of<'m>(
+    modes: &'m [ModeFunctions; 3],
+    on_spring: Option<&'m StuckOnSpring>,
+    (contact, delta): (bool, f64),
+) -> Cow<'m, ModeFunctions> {
+    match on_spring {
+        Some(stuck) if contact => stuck.at(delta),
+        _ => Cow::Borrowed(functions_of(modes, Mode::Stick)),
+    }
+}
+
+impl DrivenEngine<'_> {
+    /// The stick mode's functions with the slider at `place` = (in
+    /// contact, `x_S - x_R`): with a spring in contact against a rod that
+    /// feels the slider, the stuck system's with the spring (`stuck.rs`).
+    pub(super) fn stick_functions(&self, place: (bool, f64)) -> Cow<'_, ModeFunctions> {
+        stick_functions_of(&self.modes, self.stuck_on_spring.as_ref(), place)
+    }
+
+    /// The closed forms of `segment`'s mode, in contact with the spring
+    /// where `contact` says so. Where it does not say, a stick segment's
+    /// slider is in contact with a free end where it is beyond the end
+    /// somewhere on the segment (its ends are events, so it is on one side
+    /// throughout).
+    pub(super) fn segment_functions(
+        &self,
+        segment: &Segment,
+        contact: Option<bool>,
+    ) -> Cow<'_, ModeFunctions> {
+        match (segment.mode, &self.spring) {
+            (Mode::Stick, Some(law)) => {
+                let x = segment.slider_origin + segment.slider_start.x;
+                let x_end = segment.slider_origin + segment.slider_end.x;
+                let contact = contact.unwrap_or_else(|| law.spring.in_contact(x.max(x_end)));
+                self.stick_functions((contact, x - segment.rod_start.x))
+            }
+            (mode, _) => Cow::Borrowed(self.functions(mode)),
         }
     }
 }
