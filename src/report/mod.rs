@@ -454,6 +454,13 @@ fn steady_text(r: &RunReport) -> String {
             line(&mut out, key, format_with_error(value, None), unit);
         }
     }
+    if r.drive.is_none() && r.driven_period.is_some() {
+        let _ = writeln!(
+            out,
+            "driven rod (steady period): not resolved (the rod's free oscillation, heavily \
+             over-damped, is beyond the root finder's budget: model section 16)"
+        );
+    }
     if let Some(s) = &r.spring {
         spring_text(&mut out, s);
     }

@@ -405,9 +405,11 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         };
         engine.run_period(2, start, &mut recorded)?;
         map_evaluations += 1;
-        engine
-            .drive_profile(&recorded.segments)
-            .map(|profile| (profile, recorded.segments))
+        // A driven rod keeps its period even where the profile is not
+        // resolved (its searches spent their budget: model section 16).
+        let profile = engine.drive_profile(&recorded.segments);
+        let driven = matches!(scene.rod, crate::actuator::RodModel::Driven(_));
+        (driven || profile.is_some()).then_some((profile, recorded.segments))
     } else {
         None
     };
@@ -422,7 +424,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
         None
     };
     let (drive, driven_period) = match drive {
-        Some((profile, segments)) => (Some(profile), Some(segments)),
+        Some((profile, segments)) => (profile, Some(segments)),
         None => (None, None),
     };
     let power = match (&scene.actuator, &signal) {

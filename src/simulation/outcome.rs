@@ -168,7 +168,9 @@ pub struct RunReport {
     pub trajectory: Option<Vec<Segment>>,
     /// A driven rod's deviation from its signal, voltage and current over
     /// the steady period (docs/model.md section 16); `None` for a
-    /// prescribed rod.
+    /// prescribed rod, and for a driven rod whose profile is not resolved
+    /// (its searches spent their budget; [`RunReport::driven_period`] is
+    /// then given).
     pub drive: Option<DriveProfile>,
     /// A driven rod's steady period, segment by segment (the one
     /// [`RunReport::drive`] describes); `None` for a prescribed rod.

@@ -46,9 +46,9 @@ impl PeriodEngine for DrivenEngine<'_> {
             return None;
         };
         let rod = self.rod?;
-        Some(profile::profile(segments, rod, signal, |segment| {
+        profile::profile(segments, rod, signal, |segment| {
             self.segment_functions(segment, None)
-        }))
+        })
     }
 
     fn boundary_state(&self) -> Option<DrivenState> {

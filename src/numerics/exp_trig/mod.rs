@@ -285,6 +285,12 @@ pub(crate) struct Work {
     pub subdivisions: u64,
     /// Pieces at the smallest width that no test decided.
     pub clusters: u64,
+    /// The caller's budget of evaluations over all searches counting here
+    /// (0: none). A search that finds it spent stops without an answer
+    /// and sets [`Work::exhausted`].
+    pub budget: u64,
+    /// A search stopped on the budget: its `None` is no answer.
+    pub exhausted: bool,
 }
 
 impl ExpTrig {

@@ -277,6 +277,10 @@ impl<'a> Walk<'a> {
         let mut width = self.width0;
         let mut y = (x, self.osc_bounds(x));
         while x < self.hi {
+            if self.work.budget > 0 && self.work.evaluations >= self.work.budget {
+                self.work.exhausted = true;
+                return None;
+            }
             let mut r = if self.hi - x <= 1.25 * width {
                 self.hi
             } else {
