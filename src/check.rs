@@ -20,6 +20,53 @@
 //! resolutions with a non-zero difference (at least three). A difference
 //! of exactly zero (a start-up period count that agrees) has no order. Every run's wall time covers the engine's set-up and the whole
 //! analysis, measured in this process.
+//!
+//! # A spring against the slider
+//!
+//! With `[spring]` (docs/model.md section 17) both engines carry the
+//! spring: the event engine's run is the one `stickslip run` makes (the
+//! exact engine with the spring, its start-up of `N` periods from rest
+//! and its steady orbit of `k` periods), the reference is the fixed-step
+//! engine with the spring; for a driven rod both are the driven rod's
+//! engines with the spring, and where the exact engine takes no spring
+//! with the rod, a one-line error names `spring`. The table gains the spring's figures (`spring_force_mean`,
+//! `spring_force_max`, `spring_force_min`, `spring_position_mean`,
+//! `contact_fraction`) as rows after the indicators.
+//!
+//! The reference's own motion from rest is not compared with the orbit:
+//! in slip-slip its period map is neutral (docs/model.md section 12), so
+//! its start-up locks into no orbit, and the slider's own oscillation on
+//! the spring, which the exact map damps through the event times, goes on
+//! within a band of width `O(h)` for ever (`run` with `engine = "fixed"`
+//! runs it to `run.max_periods`). Each reference run is instead bounded
+//! and read over the periods the event engine's figures describe:
+//!
+//! 1. **Start-up**: from rest over the event engine's start-up, periods
+//!    `1..=N'` (`N'` = [`RunReport::startup_span`]): the start-up's
+//!    `stiction_fraction` and its events.
+//! 2. **Orbit**: the event engine's motion from rest is run on to the
+//!    first of `N`, `2N`, `4N`, ... periods (at most `run.max_periods`)
+//!    after which it reads its orbit's spring figures within [`SETTLED`]
+//!    of the orbit's largest `|F_spring|` (its contact fraction within
+//!    [`SETTLED`]): evidence that the orbit is the limit of the motion
+//!    from rest, stated in the output, also where it is missing. From the
+//!    event engine's boundary state there (slider position and velocity,
+//!    mode, a driven rod's state), the reference runs the orbit's `k`
+//!    periods and reads the spring over them
+//!    (`src/engine/fixed_step/spring_reading.rs`: the scheme's own spring
+//!    impulse and nodes); the first of
+//!    them stands for a steady period (`friction_energy`,
+//!    `stiction_fraction_steady`).
+//!
+//! Both engines thus describe the same `k` periods from the same state,
+//! and the differences are the reference's errors over them: first order,
+//! scattering with where the events fall on the grid as every figure of
+//! the reference does. A reference run costs `N' + k` periods.
+//! ([`SpringWindow`] holds the periods, [`SpringCheck`] the runs.)
+
+mod spring;
+
+pub use spring::{SETTLED, SpringCheck, SpringRun, SpringWindow};
 
 use crate::actuator::RodModel;
 use crate::engine::DrivenEngine;
@@ -77,7 +124,8 @@ pub struct IndicatorRow {
     /// The event engine's error estimate.
     pub event_error: Option<f64>,
     /// The reference at each resolution, in the order of
-    /// [`CheckReport::reference`].
+    /// [`CheckReport::reference`] (with a spring, of
+    /// [`SpringCheck::reference`]).
     pub reference: Vec<ReferenceValue>,
     /// Least-squares order over all resolutions with a non-zero difference,
     /// when there are at least three.
@@ -89,10 +137,27 @@ pub struct IndicatorRow {
 pub struct CheckReport {
     /// The event engine's run.
     pub event: EngineRun,
-    /// The reference's runs, from coarse to fine.
+    /// The reference's runs, from coarse to fine; empty with a spring
+    /// (they are in [`CheckReport::spring`]).
     pub reference: Vec<EngineRun>,
-    /// Indicators the scene asked for, where both engines give a finite value.
+    /// Indicators the scene asked for, where both engines give a finite
+    /// value; with a spring, then the spring's figures.
     pub rows: Vec<IndicatorRow>,
+    /// With a spring against the slider: the reference's runs and the
+    /// periods they read over (module docs).
+    pub spring: Option<SpringCheck>,
+}
+
+/// One figure of a run, as a row of the table shows it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Figure {
+    /// Name as in the JSON output.
+    name: &'static str,
+    /// SI unit (`1` for a fraction).
+    unit: &'static str,
+    value: f64,
+    /// The error estimate, where the engine states one.
+    error: Option<f64>,
 }
 
 /// The observed order between two differences at step counts `s_coarse`
@@ -175,6 +240,9 @@ pub fn check(scene: &Scene, steps: &[u32]) -> Result<CheckReport, Error> {
         RodModel::Driven(spec) => Some(simulation::driven_rod(scene, spec, &signal, &motor)?),
         RodModel::Prescribed => None,
     };
+    if let Some(spring) = scene.spring {
+        return spring::check(scene, (&signal, &motor), rod.as_ref(), spring, &steps);
+    }
     let (report, wall_time) = match &rod {
         Some(rod) => {
             let options = EventOptions::default();
@@ -230,58 +298,66 @@ pub fn check(scene: &Scene, steps: &[u32]) -> Result<CheckReport, Error> {
             wall_time,
         });
     }
-    let rows = rows(&event, &reference);
+    let fixed: Vec<(u32, Vec<Figure>)> = reference
+        .iter()
+        .map(|r| {
+            let s = r.steps_per_harmonic.unwrap_or(0);
+            (s, indicator_figures(&r.report))
+        })
+        .collect();
+    let rows = rows(&indicator_figures(&event.report), &fixed);
     Ok(CheckReport {
         event,
         reference,
         rows,
+        spring: None,
     })
 }
 
-/// `(name, unit, value, error estimate)` of every requested indicator,
-/// with the definitions and units of `stickslip run`
-/// ([`RunReport::value`], [`Indicator::printed_unit`]); `stiction_fraction` is
-/// followed by `stiction_fraction_steady`, the steady period's.
-fn indicator_values(r: &RunReport) -> Vec<(&'static str, &'static str, f64, Option<f64>)> {
+/// Every requested indicator, with the definitions and units of
+/// `stickslip run` ([`RunReport::value`], [`Indicator::printed_unit`]);
+/// `stiction_fraction` is followed by `stiction_fraction_steady`, the
+/// steady period's.
+fn indicator_figures(r: &RunReport) -> Vec<Figure> {
     let mut out = Vec::new();
     for indicator in &r.requested {
         if let Some(value) = r.value(*indicator) {
-            out.push((
-                indicator.name(),
-                indicator.printed_unit(),
+            out.push(Figure {
+                name: indicator.name(),
+                unit: indicator.printed_unit(),
                 value,
-                r.error(*indicator),
-            ));
+                error: r.error(*indicator),
+            });
         }
         if *indicator == Indicator::StictionFraction {
-            out.push((
-                "stiction_fraction_steady",
-                "1",
-                r.indicators.stiction_fraction,
-                None,
-            ));
+            out.push(Figure {
+                name: "stiction_fraction_steady",
+                unit: "1",
+                value: r.indicators.stiction_fraction,
+                error: None,
+            });
         }
     }
     out
 }
 
-fn rows(event: &EngineRun, reference: &[EngineRun]) -> Vec<IndicatorRow> {
-    let fixed: Vec<_> = reference
-        .iter()
-        .map(|r| indicator_values(&r.report))
-        .collect();
+/// A row for every finite figure of the event engine that every
+/// reference run, given as `(steps per harmonic, figures)` from coarse to
+/// fine, has with a finite value.
+fn rows(event: &[Figure], reference: &[(u32, Vec<Figure>)]) -> Vec<IndicatorRow> {
     let mut rows = Vec::new();
-    for (name, unit, value, error) in indicator_values(&event.report) {
+    for figure in event {
+        let (name, value) = (figure.name, figure.value);
         if !value.is_finite() {
             continue;
         }
         let mut values = Vec::with_capacity(reference.len());
         let mut previous: Option<(f64, f64)> = None;
-        for (run, list) in reference.iter().zip(&fixed) {
-            let Some(&(_, _, v, _)) = list.iter().find(|(n, ..)| *n == name) else {
+        for (steps, list) in reference {
+            let Some(v) = list.iter().find(|f| f.name == name).map(|f| f.value) else {
                 break;
             };
-            let s = f64::from(run.steps_per_harmonic.unwrap_or(0));
+            let s = f64::from(*steps);
             let difference = v - value;
             let order = previous.and_then(|(d, s0)| observed_order(d, difference, s0, s));
             previous = Some((difference, s));
@@ -295,13 +371,13 @@ fn rows(event: &EngineRun, reference: &[EngineRun]) -> Vec<IndicatorRow> {
             let pairs: Vec<(f64, f64)> = reference
                 .iter()
                 .zip(&values)
-                .map(|(r, v)| (f64::from(r.steps_per_harmonic.unwrap_or(0)), v.difference))
+                .map(|((s, _), v)| (f64::from(*s), v.difference))
                 .collect();
             rows.push(IndicatorRow {
                 name,
-                unit,
+                unit: figure.unit,
                 event: value,
-                event_error: error,
+                event_error: figure.error,
                 fitted_order: fitted_order(&pairs),
                 reference: values,
             });
@@ -328,15 +404,48 @@ fn seconds(d: Duration) -> String {
     }
 }
 
+/// A run's line in the text: label, steps per period, periods, wall time
+/// and the events of the start-up.
+struct RunLine {
+    label: String,
+    steps_per_period: Option<u64>,
+    periods: u64,
+    wall_time: Duration,
+    events: EventCounts,
+}
+
 impl CheckReport {
-    /// The table as text: the runs (resolution, work, wall time), then one
-    /// block per indicator.
+    /// Every run's line, the event engine's first.
+    fn run_lines(&self) -> Vec<RunLine> {
+        let label = |s: Option<u32>| s.map_or("event".to_owned(), |s| format!("fixed {s}"));
+        let line = |r: &EngineRun| RunLine {
+            label: label(r.steps_per_harmonic),
+            steps_per_period: r.steps_per_period,
+            periods: r.report.work.periods,
+            wall_time: r.wall_time,
+            events: r.report.events(),
+        };
+        let mut lines: Vec<RunLine> = std::iter::once(&self.event)
+            .chain(&self.reference)
+            .map(line)
+            .collect();
+        if let Some(spring) = &self.spring {
+            lines.extend(spring.reference.iter().map(|r| RunLine {
+                label: label(Some(r.steps_per_harmonic)),
+                steps_per_period: Some(r.steps_per_period),
+                periods: r.periods,
+                wall_time: r.wall_time,
+                events: r.startup_events,
+            }));
+        }
+        lines
+    }
+
+    /// The table as text: the runs (resolution, work, wall time), with a
+    /// spring what the reference read over, then one block per indicator
+    /// and, with a spring, per figure of the spring.
     pub fn to_text(&self) -> String {
         let mut out = String::new();
-        let label = |r: &EngineRun| match r.steps_per_harmonic {
-            None => "event".to_owned(),
-            Some(s) => format!("fixed {s}"),
-        };
         let _ = writeln!(
             out,
             "cross-check: event engine against the fixed-step reference (Moreau-Jean, first order)"
@@ -356,8 +465,9 @@ impl CheckReport {
             "{:<12} {:>14} {:>9} {:>12} {:>9}  events of the start-up",
             "run", "steps/period", "periods", "wall time", "/ event"
         );
+        let lines = self.run_lines();
         let base = self.event.wall_time.as_secs_f64();
-        for run in std::iter::once(&self.event).chain(&self.reference) {
+        for run in &lines {
             let per_period = run
                 .steps_per_period
                 .map_or("-".to_owned(), |n| n.to_string());
@@ -365,13 +475,16 @@ impl CheckReport {
             let _ = writeln!(
                 out,
                 "{:<12} {:>14} {:>9} {:>12} {:>9.1}  {}",
-                label(run),
+                run.label,
                 per_period,
-                run.report.work.periods,
+                run.periods,
                 seconds(run.wall_time),
                 ratio,
-                events_text(&run.report.events()),
+                events_text(&run.events),
             );
+        }
+        if let Some(spring) = &self.spring {
+            window_text(&mut out, &spring.window);
         }
         for row in &self.rows {
             let _ = writeln!(out);
@@ -388,7 +501,7 @@ impl CheckReport {
                 .event_error
                 .map_or(String::new(), |e| format!(" ± {e:.1e}"));
             let _ = writeln!(out, "  {:<12} {:>22.15e}{error}", "event", row.event);
-            for (run, v) in self.reference.iter().zip(&row.reference) {
+            for (run, v) in lines[1..].iter().zip(&row.reference) {
                 let relative = if row.event != 0.0 {
                     format!("{:>12.2e}", v.difference / row.event.abs())
                 } else {
@@ -398,14 +511,34 @@ impl CheckReport {
                 let _ = writeln!(
                     out,
                     "  {:<12} {:>22.15e} {:>12.2e} {relative} {order:>7}",
-                    label(run),
-                    v.value,
-                    v.difference,
+                    run.label, v.value, v.difference,
                 );
             }
         }
         out
     }
+}
+
+/// What the reference against a spring read over, in words.
+fn window_text(out: &mut String, w: &SpringWindow) {
+    let (reads, within) = if w.settled {
+        ("reads", format!("after {} periods", w.settle))
+    } else {
+        (
+            "does not read",
+            format!("within the {} periods of run.max_periods", w.settle),
+        )
+    };
+    let _ = writeln!(out);
+    let _ = writeln!(
+        out,
+        "spring: start-up figures over periods 1..{} from rest (the event engine's start-up); the\n\
+         event engine's motion from rest {reads} its orbit's spring figures to {SETTLED:.0e} of the largest\n\
+         force {within}; each reference reads the spring over the orbit's {}\n\
+         from the event engine's state there, and a steady period's indicators over the first",
+        w.startup,
+        crate::plural::count(w.read, "period", "periods"),
+    );
 }
 
 #[cfg(test)]
@@ -421,5 +554,24 @@ mod tests {
         assert!(fitted_order(&[(10.0, 1e-2), (20.0, 0.0), (40.0, 2.5e-3)]).is_none());
         assert!(validate_steps(&[]).is_err());
         assert!(validate_steps(&[50, 0]).is_err());
+    }
+
+    #[test]
+    fn a_spring_on_an_ideal_signal_is_refused_in_one_line_naming_the_spring() {
+        // The exact engine takes a spring on a continuous signal only
+        // (docs/model.md section 17): an ideal signal's jumps would strike it.
+        let motor = Motor::new(crate::motor::MotorParams::default()).expect("the paper's motor");
+        let spec = crate::signal::SignalSpec::ideal(25e-6, 36.0, 1.0);
+        let signal = crate::signal::Signal::build(&spec, &motor).expect("an ideal signal");
+        let spring = crate::spring::Spring {
+            stiffness: 1e4,
+            damping: 0.0,
+            end: crate::spring::SpringEnd::Tied { preload: 0.0 },
+        };
+        let e = simulation::spring_engine(&signal, &motor, None, spring, EventOptions::default())
+            .expect_err("refused")
+            .to_string();
+        assert!(e.starts_with("spring"), "{e}");
+        assert!(!e.contains('\n'), "{e}");
     }
 }

@@ -1,28 +1,15 @@
 //! The spring's reading in the run report (docs/model.md section 17): the
 //! keys of `run --json` and the lines of the text summary.
 
-use crate::simulation::SpringReading;
+use crate::simulation::{SpringReading, spring_figures};
 use serde_json::{Map, Value, json};
 use std::fmt::Write as _;
-
-/// The reading's JSON keys, values and units, in the order the text
-/// prints them.
-pub(super) fn spring_figures(r: &SpringReading) -> [(&'static str, f64, &'static str); 5] {
-    let p = &r.profile;
-    [
-        ("spring_force_mean", p.force_mean, "N"),
-        ("spring_force_max", p.force_max, "N"),
-        ("spring_force_min", p.force_min, "N"),
-        ("spring_position_mean", p.position_mean, "m"),
-        ("contact_fraction", p.contact_fraction, ""),
-    ]
-}
 
 /// The reading's keys in `run --json`: the figures, `orbit_periods`
 /// (`null` where no orbit locked), `spring_reading_periods`, and where no
 /// orbit locked `spring_force_mean_range` and `orbit_search`.
 pub(super) fn add_spring_json(m: &mut Map<String, Value>, r: &SpringReading) {
-    for (key, value, _) in spring_figures(r) {
+    for (key, value, _) in spring_figures(&r.profile) {
         m.insert(key.into(), super::number(value));
     }
     m.insert(
@@ -65,7 +52,7 @@ pub(super) fn spring_text(out: &mut String, r: &SpringReading) {
             crate::plural::count(r.periods, "period", "periods")
         );
     }
-    for (key, value, unit) in spring_figures(r) {
+    for (key, value, unit) in spring_figures(&r.profile) {
         let _ = writeln!(
             out,
             "  {key:<22} {} {unit}",

@@ -58,6 +58,16 @@ impl<E: PeriodEngine> TimeBudget<E> {
         }
     }
 
+    /// The engine inside.
+    pub(crate) fn engine(&self) -> &E {
+        &self.engine
+    }
+
+    /// The engine inside, to change.
+    pub(crate) fn engine_mut(&mut self) -> &mut E {
+        &mut self.engine
+    }
+
     /// A progress line every [`PROGRESS_EVERY`] of a long run.
     fn report_progress(&mut self) {
         let Some((start, last)) = self.progress else {

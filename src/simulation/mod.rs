@@ -102,6 +102,7 @@ pub use outcome::{
     CertificateKind, Outcome, Regime, RunReport, RunTimes, SpringReading, SteadyStateCertificate,
     SteadyStateCheck, Unsettled,
 };
+pub(crate) use spring_reading::{orbit_reading, spring_figures};
 
 use crate::actuator::{DrivenRod, DrivenSpec, RodModel, Voltage};
 use crate::engine::DrivenEngine;
@@ -112,6 +113,7 @@ use crate::error::{Error, ParamError, SimulationError};
 use crate::motor::Motor;
 use crate::scene::{EngineKind, Scene};
 use crate::signal::Signal;
+use crate::spring::Spring;
 use drive::simulate_timed;
 use std::time::Instant;
 
@@ -206,68 +208,29 @@ pub(super) fn simulate_built(
         // discontinuous signal with a spring).
         (RodModel::Prescribed, EngineKind::Event) if scene.spring.is_some() => {
             let spring = scene.spring.expect("a spring");
-            let engine = DrivenEngine::prescribed(
-                signal,
-                motor,
-                event.velocity_tolerance,
-                event.max_events_per_period,
-            )
-            .and_then(|e| e.with_spring(spring, motor))
-            .ok_or_else(|| {
-                Error::Param(ParamError::Inconsistent {
-                    field: "spring".to_owned(),
-                    reason: "needs a continuous signal (fourier or harmonics) and a prescribed rod"
-                        .to_owned(),
-                })
-            })?;
-            simulate_timed(engine, scene, motor, None, clock)?
-        }
-        (RodModel::Prescribed, EngineKind::Fixed) if scene.spring.is_some() => {
-            let options = FixedStepOptions {
-                steps_per_harmonic: scene.run.steps_per_harmonic,
-                ..FixedStepOptions::default()
-            };
-            let spring = scene.spring.expect("a spring");
-            let engine = FixedStepEngine::new(signal, motor, options).with_spring(spring);
+            let engine = spring_engine(signal, motor, None, spring, event)?;
             simulate_timed(engine, scene, motor, None, clock)?
         }
         (RodModel::Driven(spec), engine) => {
             let rod = driven_rod(scene, spec, signal, motor)?;
             match engine {
                 EngineKind::Event => {
-                    let engine = DrivenEngine::new(
-                        signal,
-                        &rod,
-                        motor,
-                        event.velocity_tolerance,
-                        event.max_events_per_period,
-                    );
-                    match scene.spring {
-                        Some(spring) => {
-                            let engine = engine.with_spring(spring, motor).ok_or_else(|| {
-                                Error::Param(ParamError::Inconsistent {
-                                    field: "spring".to_owned(),
-                                    reason: "is outside its ranges".to_owned(),
-                                })
-                            })?;
-                            simulate_timed(engine, scene, motor, Some(&rod), clock)?
-                        }
-                        None => simulate_timed(engine, scene, motor, Some(&rod), clock)?,
-                    }
+                    let engine = match scene.spring {
+                        Some(spring) => spring_engine(signal, motor, Some(&rod), spring, event)?,
+                        None => DrivenEngine::new(
+                            signal,
+                            &rod,
+                            motor,
+                            event.velocity_tolerance,
+                            event.max_events_per_period,
+                        ),
+                    };
+                    simulate_timed(engine, scene, motor, Some(&rod), clock)?
                 }
                 EngineKind::Fixed => {
-                    let options = FixedStepOptions {
-                        steps_per_harmonic: scene.run.steps_per_harmonic,
-                        ..FixedStepOptions::default()
-                    };
-                    let engine = FixedStepEngine::driven(signal, motor, &rod, options);
-                    match scene.spring {
-                        Some(spring) => {
-                            let engine = engine.with_spring(spring);
-                            simulate_timed(engine, scene, motor, None, clock)?
-                        }
-                        None => simulate_timed(engine, scene, motor, None, clock)?,
-                    }
+                    let steps = scene.run.steps_per_harmonic;
+                    let engine = fixed_step_engine(signal, motor, Some(&rod), scene.spring, steps);
+                    simulate_timed(engine, scene, motor, None, clock)?
                 }
             }
         }
@@ -276,11 +239,8 @@ pub(super) fn simulate_built(
             simulate_timed(engine, scene, motor, None, clock)?
         }
         (RodModel::Prescribed, EngineKind::Fixed) => {
-            let options = FixedStepOptions {
-                steps_per_harmonic: scene.run.steps_per_harmonic,
-                ..FixedStepOptions::default()
-            };
-            let engine = FixedStepEngine::new(signal, motor, options);
+            let steps = scene.run.steps_per_harmonic;
+            let engine = fixed_step_engine(signal, motor, None, scene.spring, steps);
             simulate_timed(engine, scene, motor, None, clock)?
         }
     };
@@ -290,6 +250,66 @@ pub(super) fn simulate_built(
         Outcome::RunAway { state, .. } | Outcome::NotConverged(state) => state.wall_time = wall,
     }
     Ok(outcome)
+}
+
+/// The exact engine of a slider against `spring` (docs/model.md section
+/// 17): a rod that follows `signal` (`rod` is `None`,
+/// [`DrivenEngine::prescribed`]) or the driven `rod`
+/// ([`DrivenEngine::new`]), with the spring
+/// ([`DrivenEngine::with_spring`]). A rod or signal the engine takes no
+/// spring with is a one-line error naming `spring`.
+pub(crate) fn spring_engine<'a>(
+    signal: &'a Signal,
+    motor: &Motor,
+    rod: Option<&'a DrivenRod>,
+    spring: Spring,
+    event: EventOptions,
+) -> Result<DrivenEngine<'a>, Error> {
+    let (tolerance, events) = (event.velocity_tolerance, event.max_events_per_period);
+    let (engine, reason) = match rod {
+        None => (
+            DrivenEngine::prescribed(signal, motor, tolerance, events),
+            "needs a continuous signal (fourier or harmonics) and a prescribed rod",
+        ),
+        Some(rod) => (
+            Some(DrivenEngine::new(signal, rod, motor, tolerance, events)),
+            "is outside its ranges",
+        ),
+    };
+    engine
+        .and_then(|e| e.with_spring(spring, motor))
+        .ok_or_else(|| {
+            ParamError::Inconsistent {
+                field: "spring".to_owned(),
+                reason: reason.to_owned(),
+            }
+            .into()
+        })
+}
+
+/// The fixed-step reference (docs/model.md section 12) at
+/// `steps_per_harmonic`: for a rod that follows `signal` (`rod` is `None`)
+/// or the driven `rod`, with `spring` against the slider if there is one
+/// (section 17).
+pub(crate) fn fixed_step_engine<'a>(
+    signal: &'a Signal,
+    motor: &Motor,
+    rod: Option<&DrivenRod>,
+    spring: Option<Spring>,
+    steps_per_harmonic: u32,
+) -> FixedStepEngine<'a> {
+    let options = FixedStepOptions {
+        steps_per_harmonic,
+        ..FixedStepOptions::default()
+    };
+    let engine = match rod {
+        None => FixedStepEngine::new(signal, motor, options),
+        Some(rod) => FixedStepEngine::driven(signal, motor, rod, options),
+    };
+    match spring {
+        Some(spring) => engine.with_spring(spring),
+        None => engine,
+    }
 }
 
 /// The driven rod of a scene (`[actuator] rod = "driven"`): the voltage
@@ -315,6 +335,19 @@ pub(crate) fn driven_rod(
         None => Voltage::designed(series, design),
     };
     Ok(DrivenRod::new(spec, design, voltage, motor)?)
+}
+
+/// [`run_with`] for an engine with a driven rod's state or a spring's
+/// (`rod`: the driven rod, whose fixed point is then found by Newton with
+/// its exact Jacobian, as [`run`] does; `None` for a rod that follows its
+/// signal).
+pub(crate) fn run_with_rod<E: PeriodEngine>(
+    engine: E,
+    scene: &Scene,
+    motor: &Motor,
+    rod: Option<&DrivenRod>,
+) -> Result<RunReport, Error> {
+    simulate_timed(engine, scene, motor, rod, Instant::now())?.into_report()
 }
 
 /// [`run`] for callers that need a steady state: a run-away or an

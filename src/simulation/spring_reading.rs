@@ -1,16 +1,17 @@
 //! What a spring against the slider reads (docs/model.md section 17):
 //! over the orbit the start-up locked into, or, where it locked into none,
-//! over the periods after it.
+//! over the periods after it; and the names and units its figures have in
+//! every report.
 
 use super::SpringReading;
 use crate::analysis::Transient;
-use crate::engine::{PeriodEngine, PeriodStart};
+use crate::engine::{PeriodEngine, PeriodStart, SpringProfile};
 use crate::error::Error;
 use crate::observer::{EventLog, Trajectory};
 
 /// The spring's reading over the next `periods` periods of `engine` (an
 /// orbit of that many periods, the engine at its start).
-pub(super) fn orbit_reading<E: PeriodEngine>(
+pub(crate) fn orbit_reading<E: PeriodEngine>(
     engine: &mut E,
     periods: u64,
 ) -> Result<Option<SpringReading>, Error> {
@@ -114,4 +115,16 @@ pub(super) fn orbit_periods(transient: &Transient, scale: f64) -> u64 {
                     .all(|i| n > i + k && (b[n - 1 - i] - b[n - 1 - i - k]).abs() <= 1e-9 * scale)
         })
         .unwrap_or(cycle) as u64
+}
+
+/// The spring's figures: their keys (in `run --json`, and the rows of
+/// `check`), values and units, in the order the reports print them.
+pub(crate) fn spring_figures(p: &SpringProfile) -> [(&'static str, f64, &'static str); 5] {
+    [
+        ("spring_force_mean", p.force_mean, "N"),
+        ("spring_force_max", p.force_max, "N"),
+        ("spring_force_min", p.force_min, "N"),
+        ("spring_position_mean", p.position_mean, "m"),
+        ("contact_fraction", p.contact_fraction, ""),
+    ]
 }

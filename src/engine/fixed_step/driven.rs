@@ -182,6 +182,12 @@ impl Driven {
         }
     }
 
+    /// Sets the state the next period (not a period 1 from rest) starts
+    /// from: the rod's, and the slider's velocity and mode.
+    pub(super) fn continue_from(&mut self, rod: Kinematics, slider: f64, mode: Mode) {
+        self.carry = Some(Carry { rod, slider, mode });
+    }
+
     /// The rod at the end of the last period (at rest before the first).
     pub(super) fn rod_state(&self) -> Kinematics {
         self.carry.map_or(Kinematics::default(), |c| c.rod)
@@ -280,10 +286,16 @@ impl FixedStepEngine<'_> {
             };
             rod.x += 0.5 * h * (rod.v + v_rod);
             rod.v = v_rod;
-            let v0 = walk.v;
+            let (x0, v0) = (walk.origin + walk.x, walk.v);
             walk.x += 0.5 * h * (walk.v + v_slider);
             walk.v = v_slider;
             walk.tau = next;
+            self.tally_step(
+                h,
+                [x0, v0],
+                [walk.origin + walk.x, v_slider],
+                load.is_some(),
+            );
             if load.is_some() && matches!(new_mode, Mode::Slip(_)) {
                 walk.step_accel = Some((v_slider - v0) / h);
             }

@@ -157,6 +157,7 @@ mod driven;
 mod prescribed;
 mod rod;
 mod spring;
+mod spring_reading;
 
 use super::contact::Contact;
 use super::{
@@ -220,6 +221,8 @@ pub struct FixedStepEngine<'s> {
     slider_x: f64,
     /// `m_s` (kg), for a spring's force.
     slider_mass: f64,
+    /// A reading of the spring in progress (`spring_reading.rs`).
+    tally: Option<spring_reading::SpringTally>,
 }
 
 /// Mutable state of the walk through one period.
@@ -317,6 +320,7 @@ impl<'s> FixedStepEngine<'s> {
             spring: None,
             slider_x: 0.0,
             slider_mass: motor.params().slider_mass,
+            tally: None,
         }
     }
 

@@ -158,12 +158,13 @@ impl FixedStepEngine<'_> {
                     Some(load) => load.tangent(new_mode, walk.tangent, 0.0, h),
                 };
             }
-            let v0 = walk.v;
+            let (x0, v0) = (walk.origin + walk.x, walk.v);
             walk.x += 0.5 * h * (walk.v + v1);
             walk.v = v1;
             walk.tau = next;
             v_rod = v_rod_end;
             if self.spring.is_some() {
+                self.tally_step(h, [x0, v0], [walk.origin + walk.x, v1], load.is_some());
                 if load.is_some() && matches!(new_mode, Mode::Slip(_)) {
                     walk.step_accel = Some((v1 - v0) / h);
                 }

@@ -134,6 +134,23 @@ impl SpringStep {
         self.spring.force(x, v) / self.mass
     }
 
+    /// `F_spring` (N) at the slider's absolute position `x` (m) and
+    /// velocity `v` (m/s): 0 away from a free end.
+    #[inline]
+    pub(super) fn force(&self, x: f64, v: f64) -> f64 {
+        self.spring.force(x, v)
+    }
+
+    /// `F_bar` (N), the force over a step in contact from `[x_0, v_0]` to
+    /// `[x_1, v_1]`: the mean of the two nodes' forces of the law in
+    /// contact, `F(x_0, v_0) + k (x_1 - x_0) / 2 + b (v_1 - v_0) / 2`
+    /// (module doc).
+    #[inline]
+    pub(super) fn step_force(&self, [x0, v0]: [f64; 2], [x1, v1]: [f64; 2]) -> f64 {
+        let (k, b) = (self.spring.stiffness, self.spring.damping);
+        self.spring.force(x0, v0) + 0.5 * k * (x1 - x0) + 0.5 * b * (v1 - v0)
+    }
+
     /// The load over a step of length `h` (s) from the slider at `x` (m,
     /// absolute) with velocity `v` (m/s); `None` out of contact.
     #[inline]
