@@ -329,17 +329,6 @@ fn mutated_scenes_give_a_result_or_one_error_line() {
             &input,
         );
         assert!(o.elapsed < HANG, "took {:?} on\n{input}", o.elapsed);
-        if o.elapsed > Duration::from_millis(300) {
-            eprintln!(
-                "SLOW {:?}: {}",
-                o.elapsed,
-                input
-                    .replace('\n', " | ")
-                    .chars()
-                    .take(900)
-                    .collect::<String>()
-            );
-        }
         if o.elapsed > slowest.0 {
             slowest = (o.elapsed, input.clone());
         }
