@@ -400,3 +400,21 @@ fn the_sensitivities_of_v_inf_are_refused_against_a_spring() {
         "{err}"
     );
 }
+
+/// The fixed-step reference has no steady orbit of its own against a
+/// spring (its period map is neutral in slip-slip, docs/model.md section
+/// 12), so a scene asks for it in vain: refused in one line naming
+/// `run.engine`, while `check` compares it with the exact engine.
+#[test]
+fn a_spring_with_the_fixed_step_engine_is_refused_naming_the_engine() {
+    let mut scene = Scene {
+        spring: Some(tied(1e4, 0.0)),
+        ..Scene::default()
+    };
+    scene.outputs.indicators = vec![Indicator::FrictionEnergy];
+    assert!(scene.validate().is_ok());
+    scene.run.engine = stickslip::scene::EngineKind::Fixed;
+    let refused = scene.validate().expect_err("refused").to_string();
+    assert!(refused.starts_with("run.engine"), "{refused}");
+    assert_eq!(refused.lines().count(), 1, "{refused}");
+}
