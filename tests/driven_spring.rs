@@ -282,22 +282,6 @@ fn without_the_reaction_a_driven_rod_reads_the_spring_as_the_prescribed_rod() {
 fn the_fixed_step_engine_with_a_driven_rod_and_a_spring_converges_at_first_order() {
     let (motor, _, actuator) = paper();
     let periods = 20;
-    let run = |engine: &mut dyn FnMut(u64, PeriodStart) -> PeriodEnd| {
-        let mut start = PeriodStart {
-            velocity: 0.0,
-            mode: None,
-        };
-        let mut end = None;
-        for p in 1..=periods {
-            let e = engine(p, start);
-            start = PeriodStart {
-                velocity: e.velocity,
-                mode: Some(e.mode),
-            };
-            end = Some(e);
-        }
-        end.expect("periods")
-    };
     let free = Spring {
         stiffness: 1e5,
         damping: 0.0,
@@ -319,7 +303,9 @@ fn the_fixed_step_engine_with_a_driven_rod_and_a_spring_converges_at_first_order
             .with_spring(spring, &motor)
             .expect("a spring in range");
         let mut log = EventLog::default();
-        let e_end = run(&mut |p, s| exact.run_period(p, s, &mut log).expect("a period"));
+        let e_end = common::from_rest(periods, &mut |p, s| {
+            exact.run_period(p, s, &mut log).expect("a period")
+        });
         let count = |kind: EventKind| log.events.iter().filter(|e| e.kind == kind).count();
         if matches!(spring.end, SpringEnd::Free { .. }) {
             assert!(
@@ -348,7 +334,9 @@ fn the_fixed_step_engine_with_a_driven_rod_and_a_spring_converges_at_first_order
             };
             let mut fixed =
                 FixedStepEngine::driven(&signal, &motor, &rod, options).with_spring(spring);
-            let f_end = run(&mut |p, s| fixed.run_period(p, s, &mut ()).expect("a period"));
+            let f_end = common::from_rest(periods, &mut |p, s| {
+                fixed.run_period(p, s, &mut ()).expect("a period")
+            });
             let dx = (fixed.slider_position() - x_exact).abs() / 1e-6;
             let dv = (f_end.velocity - e_end.velocity).abs() / signal.velocity_scale();
             hs.push(1.0 / f64::from(steps));

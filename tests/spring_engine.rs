@@ -181,27 +181,13 @@ fn the_fixed_step_engine_with_a_spring_converges_at_first_order() {
         end: SpringEnd::Tied { preload: 0.0 },
     };
     let periods = 20;
-    let run = |engine: &mut dyn FnMut(u64, PeriodStart) -> stickslip::engine::PeriodEnd| {
-        let mut start = PeriodStart {
-            velocity: 0.0,
-            mode: None,
-        };
-        let mut end = None;
-        for p in 1..=periods {
-            let e = engine(p, start);
-            start = PeriodStart {
-                velocity: e.velocity,
-                mode: Some(e.mode),
-            };
-            end = Some(e);
-        }
-        end.expect("periods")
-    };
     let mut exact = DrivenEngine::prescribed(&signal, &motor, 1e-9, 10_000)
         .expect("a Fourier signal")
         .with_spring(spring, &motor)
         .expect("a prescribed rod");
-    let e_end = run(&mut |p, s| exact.run_period(p, s, &mut ()).expect("a period"));
+    let e_end = common::from_rest(periods, &mut |p, s| {
+        exact.run_period(p, s, &mut ()).expect("a period")
+    });
     let x_exact = exact
         .boundary_state()
         .and_then(|z| z.slider)
@@ -214,7 +200,9 @@ fn the_fixed_step_engine_with_a_spring_converges_at_first_order() {
             ..FixedStepOptions::default()
         };
         let mut fixed = FixedStepEngine::new(&signal, &motor, options).with_spring(spring);
-        let f_end = run(&mut |p, s| fixed.run_period(p, s, &mut ()).expect("a period"));
+        let f_end = common::from_rest(periods, &mut |p, s| {
+            fixed.run_period(p, s, &mut ()).expect("a period")
+        });
         let dx = (fixed.slider_position() - x_exact).abs() / 1e-6;
         let dv = (f_end.velocity - e_end.velocity).abs() / signal.velocity_scale();
         hs.push(1.0 / f64::from(steps));

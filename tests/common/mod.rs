@@ -74,6 +74,28 @@ pub fn run(scene: &Scene) -> RunReport {
         .expect("scene runs")
 }
 
+/// The end of period `periods` of a motion from rest, each period started
+/// where the last ended: `period(p, start)` runs period `p` of an engine.
+pub fn from_rest(
+    periods: u64,
+    period: &mut dyn FnMut(u64, stickslip::engine::PeriodStart) -> stickslip::engine::PeriodEnd,
+) -> stickslip::engine::PeriodEnd {
+    let mut start = stickslip::engine::PeriodStart {
+        velocity: 0.0,
+        mode: None,
+    };
+    let mut end = None;
+    for p in 1..=periods {
+        let e = period(p, start);
+        start = stickslip::engine::PeriodStart {
+            velocity: e.velocity,
+            mode: Some(e.mode),
+        };
+        end = Some(e);
+    }
+    end.expect("at least one period")
+}
+
 /// The least-squares slope of `log e` against `log h`: the observed order
 /// of convergence of errors `e` at steps `h`.
 pub fn log_slope(h: &[f64], e: &[f64]) -> f64 {
