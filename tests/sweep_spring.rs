@@ -11,8 +11,9 @@ use stickslip::characteristic::reference_forces;
 use stickslip::spring::{Spring, SpringEnd};
 use stickslip::{Indicator, Scene};
 
-/// The columns of the spring's reading (docs/interface.md section 5).
-const SPRING_COLUMNS: [&str; 9] = [
+/// The columns of the spring's reading and their error estimates
+/// (docs/interface.md section 5).
+const SPRING_COLUMNS: [&str; 14] = [
     "spring_force_mean",
     "spring_force_max",
     "spring_force_min",
@@ -22,6 +23,11 @@ const SPRING_COLUMNS: [&str; 9] = [
     "spring_reading_periods",
     "spring_force_mean_range_low",
     "spring_force_mean_range_high",
+    "error_spring_force_mean",
+    "error_spring_force_max",
+    "error_spring_force_min",
+    "error_spring_position_mean",
+    "error_contact_fraction",
 ];
 
 /// The default scene (the paper's motor and signal) with `spring`, asking
@@ -124,10 +130,11 @@ fn same(a: &serde_json::Value, b: &serde_json::Value) -> bool {
 /// Independent source: a single `stickslip run --json` of the scene with
 /// the case's stiffness (and gap) written into its `[spring]`. Every row
 /// of a `spring.stiffness` sweep holds, bit for bit, that run's
-/// fingerprint, regime and spring reading: a tied spring that locks into
-/// an orbit (`orbit_periods` 1, no range) and a stiff free end that locks
-/// into none within 300 periods (the reading over the next 64 periods and
-/// the range of a single period's mean, `tests/spring_engine.rs`).
+/// fingerprint, regime and spring reading with its error estimates: a
+/// tied spring that locks into an orbit (`orbit_periods` 1, no range, an
+/// estimate of each figure) and a stiff free end that locks into none
+/// within 300 periods (the reading over the next 64 periods and the range
+/// of a single period's mean, `tests/spring_engine.rs`; no estimate).
 #[test]
 fn each_row_of_a_stiffness_sweep_is_the_single_run_at_that_stiffness() {
     let d = scratch("sweep_spring", "single_runs");
@@ -206,6 +213,28 @@ fn each_row_of_a_stiffness_sweep_is_the_single_run_at_that_stiffness() {
                     same(&as_json(cell(row, key)), &range[j]),
                     "{name} k = {k}: {key}: sweep {} against run {range}",
                     cell(row, key)
+                );
+            }
+            // Each figure's error estimate: `error_estimate` of the run
+            // (empty and null where no orbit locked).
+            for key in [
+                "spring_force_mean",
+                "spring_force_max",
+                "spring_force_min",
+                "spring_position_mean",
+                "contact_fraction",
+            ] {
+                let column = format!("error_{key}");
+                let estimate = &json["error_estimate"][key];
+                assert!(
+                    same(&as_json(cell(row, &column)), estimate),
+                    "{name} k = {k}: {column}: sweep {} against run {estimate}",
+                    cell(row, &column)
+                );
+                assert_eq!(
+                    estimate.is_null(),
+                    json["orbit_periods"].is_null(),
+                    "{name} k = {k}: {key}'s estimate {estimate}"
                 );
             }
             // v_inf does not apply against a spring, nor its error.

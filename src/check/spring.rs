@@ -261,7 +261,7 @@ fn settle_periods(
             .ok_or_else(|| no_reading("the exact engine"))?;
         let mut trial = engine.engine().clone();
         let reading = simulation::orbit_reading(&mut trial, orbit.periods)?;
-        let reached = reading.is_some_and(|r| reads_orbit(&r.profile));
+        let reached = reading.is_some_and(|orbit| reads_orbit(&orbit.profile));
         if reached || target >= cap {
             return Ok(Settled {
                 periods: target,

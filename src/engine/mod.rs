@@ -20,7 +20,9 @@
 
 use crate::error::SimulationError;
 use crate::signal::Signal;
-pub use driven::{DriveProfile, DrivenEngine, DrivenState, SliderState, SpringProfile};
+pub use driven::{
+    DriveProfile, DrivenEngine, DrivenState, ProfileBounds, SliderState, SpringProfile,
+};
 pub use event::{EventEngine, EventOptions};
 pub use fixed_step::{FixedStepEngine, FixedStepOptions};
 pub use observer::{Observer, PeriodEnd};

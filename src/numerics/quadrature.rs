@@ -63,6 +63,23 @@ impl GaussLegendre {
         }
         sum
     }
+
+    /// The points `t` and weights `w` of the rule on `pieces` equal pieces
+    /// of `[a, b]`: `integral_a^b f(t) dt ≈ sum w f(t)` (the sum
+    /// [`GaussLegendre::integrate`] forms, for a caller that sums several
+    /// functions, or their magnitudes, at the same points).
+    pub(crate) fn points(&self, a: f64, b: f64, pieces: usize) -> impl Iterator<Item = [f64; 2]> {
+        let pieces = pieces.max(1);
+        let h = (b - a) / pieces as f64;
+        let r = 0.5 * h;
+        (0..pieces).flat_map(move |j| {
+            let m = a + (j as f64 + 0.5) * h;
+            self.nodes
+                .iter()
+                .zip(&self.weights)
+                .map(move |(x, w)| [m + r * x, r * w])
+        })
+    }
 }
 
 /// `P_n(x)` and `P_n'(x)`.
@@ -102,6 +119,19 @@ mod tests {
                 "n = {n}: {got} against {exact}"
             );
         }
+    }
+
+    /// The points and weights sum what `integrate` sums: the weights add
+    /// up to the interval's length, and `x^5` on `[0, 2]` on three pieces
+    /// is its integral `2^6 / 6` (exact for degree `2n - 1 = 23`).
+    #[test]
+    fn the_points_and_weights_integrate_as_the_rule_does() {
+        let g = GaussLegendre::new(12);
+        let length: f64 = g.points(0.0, 2.0, 3).map(|[_, w]| w).sum();
+        assert!((length - 2.0).abs() < 1e-15, "{length}");
+        let sum: f64 = g.points(0.0, 2.0, 3).map(|[t, w]| w * t.powi(5)).sum();
+        assert!((sum - 64.0 / 6.0).abs() < 1e-13, "{sum}");
+        assert_eq!(g.points(0.0, 2.0, 3).count(), 36);
     }
 
     /// An oscillating function to rounding: integral of sin^2(7 t) over

@@ -28,7 +28,7 @@ use crate::simulation::{CertificateKind, Outcome, RunReport, RunTimes};
 use driven::drive_figures;
 pub(crate) use driven::{actuator_sensitivities_text, add_actuator_sensitivities_json};
 use serde_json::{Map, Value, json};
-use spring::{add_spring_json, spring_text};
+use spring::{add_spring_errors, add_spring_json, spring_text};
 use std::fmt::Write as _;
 use unsettled::{unsettled_json, unsettled_text};
 
@@ -192,6 +192,7 @@ fn steady_json(m: &mut Map<String, Value>, r: &RunReport) {
     }
     if let Some(s) = &r.spring {
         add_spring_json(m, s);
+        add_spring_errors(&mut err, s);
     }
     if let Some(check) = &r.steady_state_check {
         // The cross-check of run.verify_steady_state: the start-up's own

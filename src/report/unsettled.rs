@@ -1,7 +1,7 @@
 //! The keys and lines of an outcome without a steady state (a run-away,
 //! or a start-up that did not establish its limit).
 
-use super::spring::{add_spring_json, spring_text};
+use super::spring::{add_spring_errors, add_spring_json, spring_text};
 use super::{cost_line, format_with_error, number, option_number};
 use crate::simulation::{RunTimes, Unsettled};
 use serde_json::{Map, Value, json};
@@ -31,6 +31,7 @@ pub(super) fn unsettled_json(m: &mut Map<String, Value>, u: &Unsettled, verify: 
     m.insert("periods_simulated".into(), json!(u.periods_simulated));
     if let Some(s) = &u.spring {
         add_spring_json(m, s);
+        add_spring_errors(&mut err, s);
     }
     m.insert(
         "steady_state_certificate".into(),

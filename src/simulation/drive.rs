@@ -3,7 +3,8 @@
 //! needs it, the check that the two agree, and the error estimates.
 
 use super::certified::{Search, bracketed_v_inf, certified_limit, covering_search};
-use super::driven::Settle;
+use super::driven::{FixedPoint, Settle};
+use super::spring_error::{Boundary, reading_error};
 use super::spring_reading::{orbit_periods, orbit_reading, unlocked_reading};
 use super::{
     CertificateKind, Outcome, RunReport, SteadyStateCertificate, SteadyStateCheck, Unsettled,
@@ -216,6 +217,8 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
     };
     let from_orbit = fast.is_none();
     let mut newton = false;
+    // Newton's fixed point: a spring's reading carries its error.
+    let mut newton_fixed: Option<FixedPoint> = None;
     let (steady, transient) = match fast {
         Some(found) => found,
         None => {
@@ -282,6 +285,7 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
                     // entered the attraction of (or, verifying, which the
                     // start-up ran on to its own limit beside).
                     let before = engine.counters().periods;
+                    newton_fixed = Some(fixed.clone());
                     engine.restart_from(fixed.state);
                     let mut steady = analysis::steady_state_at(
                         &mut engine,
@@ -413,13 +417,26 @@ pub(super) fn simulate_timed<E: PeriodEngine>(
     } else {
         None
     };
-    // A spring against the slider: what it reads over the orbit.
+    // A spring against the slider: what it reads over the orbit, and the
+    // reading's error.
     let spring = if rod_state && engine.boundary_state().is_some_and(|z| z.slider.is_some()) {
         let periods = transient
             .as_ref()
             .map_or(1, |t| orbit_periods(t, signal.velocity_scale()));
         map_evaluations += periods;
-        orbit_reading(&mut engine, periods)?
+        match orbit_reading(&mut engine, periods)? {
+            Some(orbit) => {
+                let boundary = match &newton_fixed {
+                    Some(f) => Boundary::Newton(f),
+                    None => Boundary::Repetition,
+                };
+                let (error, evaluations) =
+                    reading_error(&mut engine, &orbit, boundary, (rod, motor), &signal)?;
+                map_evaluations += evaluations;
+                Some(orbit.reading(error))
+            }
+            None => None,
+        }
     } else {
         None
     };

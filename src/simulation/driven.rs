@@ -46,10 +46,12 @@
 //! positions and velocities, `8 eps` per segment of the scales; the
 //! slider's velocity bound `u` from event times and decisions, and the
 //! rod's share of it, `u m_s / M`, since the same force jump acts on
-//! both), and the fixed point's residual `r`, are carried to the boundary
-//! velocity by the third row of `(I - J)^(-1)`:
-//! `|dv_S| <= sum_j |G_3j| (delta_j + r_j)` (the
-//! [`crate::analysis::SteadyState::boundary_bound`]).
+//! both; a slider on a spring: its position carries `u T` more), and the
+//! fixed point's residual `r`, are carried to every coordinate by its row
+//! of `G = (I - J)^(-1)`: `|dz_i| <= sum_j |G_ij| (delta_j + r_j)`
+//! ([`fixed_point_errors`]). The boundary velocity's, the last row, is
+//! [`crate::analysis::SteadyState::boundary_bound`]; a spring's reading
+//! takes them all (`spring_error.rs`).
 
 use crate::actuator::DrivenRod;
 use crate::analysis::error_estimate::rounding_velocity_of;
@@ -136,7 +138,7 @@ pub(crate) struct Settle<'a> {
 /// slider on a spring against a rod that follows the signal (the same at
 /// every period start), all four for a driven rod with a spring. The
 /// slider's velocity comes last.
-fn vector(z: &DrivenState, driven: bool) -> DVector<f64> {
+pub(super) fn vector(z: &DrivenState, driven: bool) -> DVector<f64> {
     match (z.slider, driven) {
         (Some(p), false) => DVector::from_vec(vec![p.x, z.slider_v]),
         (Some(p), true) => DVector::from_vec(vec![z.rod_x, z.rod_v, p.x, z.slider_v]),
@@ -145,7 +147,7 @@ fn vector(z: &DrivenState, driven: bool) -> DVector<f64> {
 }
 
 /// `z` with its coordinates set to `c` ([`vector`]) and its mode `mode`.
-fn with_coordinates(
+pub(super) fn with_coordinates(
     z: &DrivenState,
     c: &DVector<f64>,
     mode: crate::engine::Mode,
@@ -173,6 +175,64 @@ fn with_coordinates(
             ..*z
         },
     }
+}
+
+/// The scales of `z`'s coordinates ([`vector`]) from the `(x, v)` scales:
+/// the stroke and the largest rod velocity.
+pub(super) fn coordinate_scales(z: &DrivenState, driven: bool, (x, v): (f64, f64)) -> DVector<f64> {
+    match (z.slider, driven) {
+        (Some(_), false) => DVector::from_vec(vec![x, v]),
+        (Some(_), true) => DVector::from_vec(vec![x, v, x, v]),
+        (None, _) => DVector::from_vec(vec![x, v, v]),
+    }
+}
+
+/// The engine's errors of one period in each coordinate of `z`
+/// ([`vector`]; module docs, "The fixed point's error"): `delta`, from
+/// the velocity bound `u` of a period with `events` events, for the
+/// driven rod `rod` (`None`: a prescribed rod) under `motor`.
+pub(super) fn period_errors(
+    (rod, motor): (Option<&DrivenRod>, &Motor),
+    z: &DrivenState,
+    signal: &Signal,
+    u: f64,
+    events: u64,
+) -> DVector<f64> {
+    let rounding_v = rounding_velocity_of(signal, events);
+    let rounding_x = 8.0 * f64::EPSILON * (events as f64 + 2.0) * signal.position_scale();
+    // A slider on a spring: its position carries the velocity error over
+    // the period at most.
+    let slider_x = rounding_x + u * signal.period();
+    match (rod, z.slider.is_some()) {
+        // The rod gets the share m_s / M of the slider's velocity error.
+        (Some(rod), spring) => {
+            let share = motor.params().slider_mass / rod.real().mass;
+            let rod_part = [rounding_x, rounding_v + share * u];
+            let slider_part = if spring {
+                vec![slider_x, rounding_v + u]
+            } else {
+                vec![rounding_v + u]
+            };
+            let n = rod_part.len() + slider_part.len();
+            DVector::from_iterator(n, rod_part.into_iter().chain(slider_part))
+        }
+        (None, _) => DVector::from_vec(vec![slider_x, rounding_v + u]),
+    }
+}
+
+/// A bound on each coordinate of the fixed point `f`'s error from the
+/// engine's errors of one period `delta` and the residual `r` it carries:
+/// `|dz_i| <= sum_j |G_ij| (delta_j + r_j)`, `G = (I - J)^(-1)`;
+/// infinite where `I - J` is singular.
+pub(super) fn fixed_point_errors(f: &FixedPoint, delta: &DVector<f64>) -> DVector<f64> {
+    let n = f.jacobian.nrows();
+    let Some(g) = (DMatrix::identity(n, n) - &f.jacobian).try_inverse() else {
+        return DVector::from_element(n, f64::INFINITY);
+    };
+    let carried = delta + &f.residual;
+    DVector::from_fn(n, |i, _| {
+        (0..n).map(|j| g[(i, j)].abs() * carried[j]).sum::<f64>()
+    })
 }
 
 impl<'a> Settle<'a> {
@@ -208,12 +268,7 @@ impl<'a> Settle<'a> {
 
     /// The scales of `z`'s coordinates ([`vector`]).
     fn scales(&self, z: &DrivenState) -> DVector<f64> {
-        let (x, v) = self.scale;
-        match (z.slider, self.rod.is_some()) {
-            (Some(_), false) => DVector::from_vec(vec![x, v]),
-            (Some(_), true) => DVector::from_vec(vec![x, v, x, v]),
-            (None, _) => DVector::from_vec(vec![x, v, v]),
-        }
+        coordinate_scales(z, self.rod.is_some(), self.scale)
     }
 
     /// [`vector`] of `z` for this test's rod.
@@ -441,7 +496,8 @@ impl<'a> Settle<'a> {
 
     /// The bound on the fixed point's boundary velocity (module docs, "The
     /// fixed point's error"), with `u` the engine's velocity bound of the
-    /// steady period and `events` its events.
+    /// steady period and `events` its events: the last coordinate of
+    /// [`fixed_point_errors`].
     pub(super) fn boundary_bound(
         &self,
         f: &FixedPoint,
@@ -449,30 +505,8 @@ impl<'a> Settle<'a> {
         u: f64,
         events: u64,
     ) -> f64 {
-        let n = f.jacobian.nrows();
-        let Some(g) = (DMatrix::identity(n, n) - &f.jacobian).try_inverse() else {
-            return f64::INFINITY;
-        };
-        let rounding_v = rounding_velocity_of(signal, events);
-        let rounding_x = 8.0 * f64::EPSILON * (events as f64 + 2.0) * signal.position_scale();
-        // A slider on a spring: its position carries the velocity error
-        // over the period at most.
-        let slider_x = rounding_x + u * signal.period();
-        let mut delta = match (self.rod, f.state.slider.is_some()) {
-            // The rod gets the share m_s / M of the slider's velocity error.
-            (Some(rod), spring) => {
-                let share = self.motor.params().slider_mass / rod.real().mass;
-                let rod_part = [rounding_x, rounding_v + share * u];
-                let slider_part = if spring {
-                    vec![slider_x, rounding_v + u]
-                } else {
-                    vec![rounding_v + u]
-                };
-                DVector::from_iterator(n, rod_part.into_iter().chain(slider_part))
-            }
-            (None, _) => DVector::from_vec(vec![slider_x, rounding_v + u]),
-        };
-        delta += &f.residual;
-        (0..n).map(|j| g[(n - 1, j)].abs() * delta[j]).sum()
+        let delta = period_errors((self.rod, self.motor), &f.state, signal, u, events);
+        let dz = fixed_point_errors(f, &delta);
+        dz[dz.len() - 1]
     }
 }

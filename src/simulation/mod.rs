@@ -94,6 +94,7 @@ mod certified;
 mod drive;
 mod driven;
 mod outcome;
+mod spring_error;
 mod spring_reading;
 
 pub use crate::analysis::ErrorEstimate;
@@ -102,6 +103,7 @@ pub use outcome::{
     CertificateKind, Outcome, Regime, RunReport, RunTimes, SpringReading, SteadyStateCertificate,
     SteadyStateCheck, Unsettled,
 };
+pub use spring_error::{ReadingErrorParts, SpringReadingError};
 pub(crate) use spring_reading::{orbit_reading, spring_figures};
 
 use crate::actuator::{DrivenRod, DrivenSpec, RodModel, Voltage};

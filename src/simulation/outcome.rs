@@ -68,6 +68,11 @@ pub struct SpringReading {
     /// Where no orbit locked: `(K, N)`, the longest orbit looked for and
     /// the periods simulated from rest.
     pub searched: Option<(u64, u64)>,
+    /// The reading's error estimate over an orbit (docs/model.md section
+    /// 17, "The reading's error"); `None` where no orbit locked (none is
+    /// invented: [`SpringReading::mean_range`] is what the run knows) or
+    /// no bound holds (a grazing in the orbit).
+    pub error: Option<super::SpringReadingError>,
 }
 
 /// How a steady state was established as the limit of the motion from

@@ -1,45 +1,110 @@
 //! What a spring against the slider reads (docs/model.md section 17):
 //! over the orbit the start-up locked into, or, where it locked into none,
-//! over the periods after it; and the names and units its figures have in
-//! every report.
+//! over the periods after it.
 
 use super::SpringReading;
 use crate::analysis::Transient;
-use crate::engine::{PeriodEngine, PeriodStart, SpringProfile};
+use crate::engine::{DrivenState, EventKind, PeriodEngine, PeriodStart, SpringProfile};
 use crate::error::Error;
 use crate::observer::{EventLog, Trajectory};
 
-/// The spring's reading over the next `periods` periods of `engine` (an
-/// orbit of that many periods, the engine at its start).
-pub(crate) fn orbit_reading<E: PeriodEngine>(
+/// An orbit of whole periods run by the engine from a boundary state:
+/// what the spring reads over it, and what the reading's error needs
+/// (`spring_error.rs`).
+#[derive(Debug, Clone)]
+pub(crate) struct OrbitRun {
+    /// The boundary state it starts from.
+    pub start: DrivenState,
+    /// The one it ends in.
+    pub end: DrivenState,
+    /// The periods it covers.
+    pub periods: u64,
+    /// The spring's reading over it.
+    pub profile: SpringProfile,
+    /// Its events' kinds in order: its event structure.
+    pub kinds: Vec<EventKind>,
+    /// The engine's largest velocity bound of one of its periods (m/s;
+    /// infinite through a grazing).
+    pub velocity_uncertainty: f64,
+    /// The engine's largest event-time bound of one of its periods (s).
+    pub event_time_uncertainty: f64,
+    /// The most events one of its periods holds.
+    pub events: u64,
+}
+
+impl OrbitRun {
+    /// The reading of this orbit, `error` its estimate.
+    pub(super) fn reading(&self, error: Option<super::SpringReadingError>) -> SpringReading {
+        SpringReading {
+            orbit_periods: self.periods,
+            periods: self.periods,
+            profile: self.profile,
+            mean_range: None,
+            searched: None,
+            error,
+        }
+    }
+}
+
+/// The orbit of `periods` periods the engine runs from `start` (numbered
+/// from 2 on, so that the profile sees where each period starts); `None`
+/// for an engine without a boundary state or a spring.
+pub(super) fn run_orbit<E: PeriodEngine>(
     engine: &mut E,
+    start: DrivenState,
     periods: u64,
-) -> Result<Option<SpringReading>, Error> {
-    let Some(start) = engine.boundary_state() else {
+) -> Result<Option<OrbitRun>, Error> {
+    if !engine.restart_from(start) {
         return Ok(None);
-    };
+    }
     let mut segments = Trajectory::default();
     let mut events = EventLog::default();
     let mut from = PeriodStart {
         velocity: start.slider_v,
         mode: Some(start.mode),
     };
-    for _ in 0..periods {
-        let end = engine.run_period(2, from, &mut (&mut segments, &mut events))?;
+    let (mut velocity_uncertainty, mut event_time_uncertainty, mut most) = (0.0, 0.0, 0);
+    for p in 0..periods {
+        let before = events.events.len() + events.omitted as usize;
+        let end = engine.run_period(2 + p, from, &mut (&mut segments, &mut events))?;
+        let after = events.events.len() + events.omitted as usize;
+        most = most.max((after - before) as u64);
+        velocity_uncertainty = engine
+            .last_velocity_uncertainty()
+            .map_or(f64::INFINITY, |u| u.max(velocity_uncertainty));
+        event_time_uncertainty = engine.event_time_uncertainty().max(event_time_uncertainty);
         from = PeriodStart {
             velocity: end.velocity,
             mode: Some(end.mode),
         };
     }
+    let Some(end) = engine.boundary_state() else {
+        return Ok(None);
+    };
     Ok(engine
         .spring_profile(&start, (&segments.segments, &events.events), periods)
-        .map(|profile| SpringReading {
-            orbit_periods: periods,
+        .map(|profile| OrbitRun {
+            start,
+            end,
             periods,
             profile,
-            mean_range: None,
-            searched: None,
+            kinds: events.events.iter().map(|e| e.kind).collect(),
+            velocity_uncertainty,
+            event_time_uncertainty,
+            events: most,
         }))
+}
+
+/// The orbit of `periods` periods from the engine's boundary state (an
+/// orbit of that many periods, the engine at its start).
+pub(crate) fn orbit_reading<E: PeriodEngine>(
+    engine: &mut E,
+    periods: u64,
+) -> Result<Option<OrbitRun>, Error> {
+    match engine.boundary_state() {
+        Some(start) => run_orbit(engine, start, periods),
+        None => Ok(None),
+    }
 }
 
 /// Periods over which a spring that did not lock is read.
@@ -96,6 +161,7 @@ pub(super) fn unlocked_reading<E: PeriodEngine>(
             profile,
             mean_range: Some(range),
             searched: Some((64, simulated)),
+            error: None,
         }))
 }
 

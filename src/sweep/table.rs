@@ -279,17 +279,17 @@ impl Column {
             Column::StictionSteady => 31 + 2 * indicator(Indicator::StictionFraction),
             Column::ApparentPower => 31 + 2 * indicator(Indicator::VelocityPerPower),
             Column::Spring(s) => 50 + s.position(),
-            Column::F0 => 60,
-            Column::Period => 61,
-            Column::StartupPeriods => 62,
-            Column::PeriodsSimulated => 63,
-            Column::EventsTotal => 64,
-            Column::LastVp => 65,
-            Column::WallTime => 66,
-            Column::SetupTime => 67,
-            Column::SimulationTime => 68,
-            Column::ErrorVInf => 69,
-            Column::Failure => 70,
+            Column::F0 => 70,
+            Column::Period => 71,
+            Column::StartupPeriods => 72,
+            Column::PeriodsSimulated => 73,
+            Column::EventsTotal => 74,
+            Column::LastVp => 75,
+            Column::WallTime => 76,
+            Column::SetupTime => 77,
+            Column::SimulationTime => 78,
+            Column::ErrorVInf => 79,
+            Column::Failure => 80,
         }
     }
 
@@ -517,5 +517,46 @@ pub(super) fn column_difference(found: &[Column], wanted: &[Column]) -> String {
         (false, true) => format!("the extra columns {extra}"),
         (true, false) => format!("no columns {missing}"),
         (false, false) => format!("the extra columns {extra} and no columns {missing}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::BTreeSet;
+
+    /// JSON lines restore the column order from the ranks: every column,
+    /// the spring's and their errors among them, has its own, and the
+    /// order of a sweep's columns is the ranks' order.
+    #[test]
+    fn every_column_has_its_own_rank() {
+        let columns: Vec<Column> = [
+            Column::Case,
+            Column::SceneHash,
+            Column::Regime,
+            Column::StictionSteady,
+            Column::ApparentPower,
+            Column::F0,
+            Column::Period,
+            Column::StartupPeriods,
+            Column::PeriodsSimulated,
+            Column::EventsTotal,
+            Column::LastVp,
+            Column::WallTime,
+            Column::SetupTime,
+            Column::SimulationTime,
+            Column::ErrorVInf,
+            Column::Failure,
+        ]
+        .into_iter()
+        .chain(SweepAxis::ALL.map(Column::Axis))
+        .chain(Indicator::ALL.map(Column::Indicator))
+        .chain(SpringColumn::ALL.map(Column::Spring))
+        .collect();
+        let ranks: BTreeSet<usize> = columns.iter().map(|c| c.rank()).collect();
+        assert_eq!(ranks.len(), columns.len());
+        let spring: Vec<usize> = SpringColumn::ALL.map(|s| Column::Spring(s).rank()).to_vec();
+        assert!(spring.windows(2).all(|w| w[0] < w[1]), "{spring:?}");
+        assert!(spring[spring.len() - 1] < Column::F0.rank());
     }
 }

@@ -57,7 +57,7 @@ mod state;
 mod stuck;
 
 pub use profile::DriveProfile;
-pub use spring_profile::SpringProfile;
+pub use spring_profile::{ProfileBounds, SpringProfile};
 pub use state::{DrivenState, SliderState};
 use state::{Walk, contact_change};
 

@@ -74,6 +74,29 @@ impl SliderMotion {
         }
     }
 
+    /// The magnitudes of the terms `x_S(s)` and `v_S(s)` are summed from
+    /// (a bound on their rounding is a few `eps` of them): `|x0| + |v0 s| +
+    /// |a| s^2 / 2` and `|v0| + |a s|` at constant acceleration; on the
+    /// spring `y = u0 c + (u1 + sigma u0) g` with `|c| <= 1`, `|g| <= G`
+    /// (the oscillator's gain), so `|x_eq| + |y0| + G |y1 + sigma y0|` and
+    /// `|y1| + G (sigma |y1| + omega_0^2 |y0|)`.
+    pub(super) fn term_magnitudes(&self, s: f64) -> [f64; 2] {
+        match *self {
+            SliderMotion::Uniform { x0, v0, a } => [
+                x0.abs() + (v0 * s).abs() + 0.5 * (a * s * s).abs(),
+                v0.abs() + (a * s).abs(),
+            ],
+            SliderMotion::Oscillating { x_eq, y } => {
+                let g = y.gain();
+                let (u0, u1) = (y.y0.abs(), y.y1.abs());
+                [
+                    x_eq.abs() + u0 + g * (y.y1 + y.sigma * y.y0).abs(),
+                    u1 + g * (y.sigma * u1 + y.omega0 * y.omega0 * u0),
+                ]
+            }
+        }
+    }
+
     /// `-v_S(s)` as the polynomial and oscillator parts of an
     /// [`ExpTrig`].
     pub(super) fn negative_velocity(&self) -> ([f64; 3], Option<DampedOscillator>) {
