@@ -559,35 +559,6 @@ impl Scene {
 }
 
 impl Scene {
-    /// A spring needs a continuous signal (the exact engine's closed forms
-    /// of a rod that follows a Fourier series, or of a driven rod) and the
-    /// exact engine (`stickslip check` runs the fixed-step reference
-    /// against it); its fields are checked by [`Spring::validate`].
-    fn check_spring(&self) -> Result<(), ParamError> {
-        let Some(spring) = &self.spring else {
-            return Ok(());
-        };
-        spring.validate()?;
-        if matches!(self.signal, SignalSpec::Ideal(_)) {
-            return Err(ParamError::Inconsistent {
-                field: "spring".to_owned(),
-                reason: "needs a continuous signal (signal.kind = \"fourier\" or \"harmonics\"): \
-                         the ideal signal's jumps would strike the spring"
-                    .to_owned(),
-            });
-        }
-        if self.run.engine == EngineKind::Fixed {
-            return Err(ParamError::Inconsistent {
-                field: "run.engine".to_owned(),
-                reason: "\"fixed\" has no steady orbit of its own against a spring (in slip-slip \
-                         its period map is neutral, model section 12); run the exact engine, and \
-                         compare the fixed-step reference with `stickslip check`"
-                    .to_owned(),
-            });
-        }
-        Ok(())
-    }
-
     /// A `[voltage]` needs a driven rod and the `[actuator]` it drives; a
     /// voltage's response as the signal needs its `[voltage]`.
     fn check_voltage(&self) -> Result<(), ParamError> {
