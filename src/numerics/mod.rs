@@ -5,7 +5,10 @@
 //!   period, certified (none missed), in `O(n^2)`.
 //! * `bracket`: one root in a sign-changing bracket, safeguarded Newton.
 //! * `exp_trig`: the first zero of a quadratic plus a harmonic series plus
-//!   a free damped oscillator after a given time, certified (none missed).
+//!   one or two free damped oscillators after a given time, certified
+//!   (none missed).
+//! * `spectral`: the spectral radius of a small matrix, `None` rather than
+//!   a run without end on input the Schur iteration cannot take.
 //! * `compensated`: Neumaier's compensated sum.
 //! * `contour`: contour lines and superlevel regions of gridded values
 //!   (marching squares).
@@ -23,6 +26,7 @@ pub(crate) mod exp_trig;
 pub(crate) mod line_fit;
 mod power_of_two;
 pub(crate) mod quadrature;
+pub(crate) mod spectral;
 pub(crate) mod taylor;
 pub(crate) mod trig_roots;
 

@@ -472,12 +472,8 @@ impl<'a> Settle<'a> {
         let scales = self.scales(&f.state);
         let n = scales.len();
         let scaled = DMatrix::from_fn(n, n, |r, c| f.jacobian[(r, c)] * scales[c] / scales[r]);
-        f.radius = scaled
-            .complex_eigenvalues()
-            .iter()
-            .map(|l| l.norm())
-            .fold(0.0, f64::max);
-        if f.radius.is_nan() || f.radius >= 1.0 {
+        f.radius = crate::numerics::spectral::spectral_radius(&scaled)?;
+        if f.radius >= 1.0 {
             return None;
         }
         let mut power = DMatrix::identity(n, n);

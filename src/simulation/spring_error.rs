@@ -208,12 +208,8 @@ pub(super) fn reading_error<E: PeriodEngine>(
 /// spectral radius is not below 1 (no contraction to carry errors by).
 fn repetition_errors(jacobian: &DMatrix<f64>, carried: &DVector<f64>) -> Option<DVector<f64>> {
     let n = jacobian.nrows();
-    let radius = jacobian
-        .complex_eigenvalues()
-        .iter()
-        .map(|l| l.norm())
-        .fold(0.0, f64::max);
-    if radius.is_nan() || radius >= 1.0 {
+    let radius = crate::numerics::spectral::spectral_radius(jacobian)?;
+    if radius >= 1.0 {
         return None;
     }
     let g = (DMatrix::identity(n, n) - jacobian).try_inverse()?;
