@@ -13,6 +13,8 @@
 //! reference, whose stick decisions cancel forces a thousand times larger
 //! than the friction, stops resolving.
 
+mod common;
+
 use stickslip::actuator::{DrivenRod, RodModel, Voltage};
 use stickslip::engine::{
     DrivenEngine, DrivenState, Event, EventCounts, EventOptions, Mode, Observer, PeriodEngine,
@@ -56,25 +58,12 @@ struct Row {
 }
 
 fn rows() -> Vec<Row> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/data/driven_spring_reference.csv"
-    );
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .from_path(path)
-        .unwrap_or_else(|e| panic!("{path}: {e}"));
-    let headers = reader.headers().expect("a header").clone();
-    let col = |name: &str| {
-        headers
-            .iter()
-            .position(|h| h == name)
-            .unwrap_or_else(|| panic!("{path}: no column {name}"))
-    };
-    let rows: Vec<Row> = reader
-        .records()
+    let table = common::data_table("driven_spring_reference.csv");
+    let col = |name: &str| table.column(name);
+    let rows: Vec<Row> = table
+        .records
+        .iter()
         .map(|r| {
-            let r = r.expect("a record");
             let text = |name: &str| r[col(name)].to_owned();
             // An empty cell: a quantity the row does not have.
             let num = |name: &str| {
@@ -120,7 +109,12 @@ fn rows() -> Vec<Row> {
             }
         })
         .collect();
-    assert!(rows.len() >= 14, "{path}: {} rows", rows.len());
+    assert!(
+        rows.len() >= 14,
+        "{}: {} rows",
+        table.path.display(),
+        rows.len()
+    );
     rows
 }
 

@@ -5,6 +5,8 @@
 //! `tests/data/spring_reference.csv`, read as `tests/spring_reference.rs`
 //! reads it.
 
+mod common;
+
 use stickslip::simulation::{SpringReading, SpringReadingError};
 use stickslip::{Outcome, RunOptions, Scene};
 
@@ -20,21 +22,8 @@ struct Row {
 
 /// The reference's rows of the scene `scene` with a tied spring.
 fn tied_rows(scene: &str) -> Vec<Row> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/data/spring_reference.csv"
-    );
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .from_path(path)
-        .unwrap_or_else(|e| panic!("{path}: {e}"));
-    let headers = reader.headers().expect("a header").clone();
-    let col = |name: &str| {
-        headers
-            .iter()
-            .position(|h| h == name)
-            .unwrap_or_else(|| panic!("{path}: no column {name}"))
-    };
+    let table = common::data_table("spring_reference.csv");
+    let col = |name: &str| table.column(name);
     let [s, spring, k, mean, max, min, position, err] = [
         "scene",
         "spring",
@@ -46,9 +35,9 @@ fn tied_rows(scene: &str) -> Vec<Row> {
         "rel_err_est",
     ]
     .map(col);
-    reader
-        .records()
-        .map(|r| r.expect("a record"))
+    table
+        .records
+        .iter()
         .filter(|r| &r[s] == scene && &r[spring] == "tied")
         .map(|r| {
             let num = |i: usize| r[i].parse::<f64>().expect("a number");
@@ -68,22 +57,12 @@ fn tied_rows(scene: &str) -> Vec<Row> {
 /// `|F(rtol) - F(100 rtol)| / F` over all its rows (`5.5e-14`); a single
 /// row's estimate can be 0 where the two tolerances happen to agree.
 fn reference_error() -> f64 {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/data/spring_reference.csv"
-    );
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .from_path(path)
-        .unwrap_or_else(|e| panic!("{path}: {e}"));
-    let headers = reader.headers().expect("a header").clone();
-    let col = headers
+    let table = common::data_table("spring_reference.csv");
+    let col = table.column("rel_err_est");
+    table
+        .records
         .iter()
-        .position(|h| h == "rel_err_est")
-        .expect("rel_err_est");
-    reader
-        .records()
-        .map(|r| r.expect("a record")[col].parse::<f64>().expect("a number"))
+        .map(|r| r[col].parse::<f64>().expect("a number"))
         .fold(0.0, f64::max)
 }
 

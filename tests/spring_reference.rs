@@ -4,6 +4,8 @@
 //! code with the engine, and its output `tests/data/spring_reference.csv`
 //! (provenance in its header and in `tests/data/spring_reference.md`).
 
+mod common;
+
 use stickslip::{Outcome, RunOptions, Scene};
 
 /// One row of the reference.
@@ -21,21 +23,8 @@ struct Row {
 }
 
 fn rows() -> Vec<Row> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/data/spring_reference.csv"
-    );
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .from_path(path)
-        .unwrap_or_else(|e| panic!("{path}: {e}"));
-    let headers = reader.headers().expect("a header").clone();
-    let col = |name: &str| {
-        headers
-            .iter()
-            .position(|h| h == name)
-            .unwrap_or_else(|| panic!("{path}: no column {name}"))
-    };
+    let table = common::data_table("spring_reference.csv");
+    let col = |name: &str| table.column(name);
     let [scene, spring, k, gap, mean, max, min, contact, orbit, err] = [
         "scene",
         "spring",
@@ -49,10 +38,10 @@ fn rows() -> Vec<Row> {
         "rel_err_est",
     ]
     .map(col);
-    let rows: Vec<Row> = reader
-        .records()
+    let rows: Vec<Row> = table
+        .records
+        .iter()
         .map(|r| {
-            let r = r.expect("a record");
             let num = |i: usize| r[i].parse::<f64>().expect("a number");
             Row {
                 scene: r[scene].to_owned(),
@@ -68,7 +57,12 @@ fn rows() -> Vec<Row> {
             }
         })
         .collect();
-    assert!(rows.len() >= 20, "{path}: {} rows", rows.len());
+    assert!(
+        rows.len() >= 20,
+        "{}: {} rows",
+        table.path.display(),
+        rows.len()
+    );
     rows
 }
 

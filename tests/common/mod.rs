@@ -96,6 +96,44 @@ pub fn from_rest(
     end.expect("at least one period")
 }
 
+/// A CSV table of `tests/data` whose `#` lines (its provenance) are
+/// skipped: its records, and where each named column stands.
+pub struct DataTable {
+    pub path: PathBuf,
+    headers: csv::StringRecord,
+    pub records: Vec<csv::StringRecord>,
+}
+
+impl DataTable {
+    /// The position of the column `name`; a missing one fails the test.
+    pub fn column(&self, name: &str) -> usize {
+        self.headers
+            .iter()
+            .position(|h| h == name)
+            .unwrap_or_else(|| panic!("{}: no column {name}", self.path.display()))
+    }
+}
+
+/// The table `tests/data/NAME`; a missing or unreadable file fails the
+/// test.
+pub fn data_table(name: &str) -> DataTable {
+    let path = data_path(name);
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .from_path(&path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let headers = reader.headers().expect("a header").clone();
+    let records = reader
+        .records()
+        .map(|r| r.unwrap_or_else(|e| panic!("{}: {e}", path.display())))
+        .collect();
+    DataTable {
+        path,
+        headers,
+        records,
+    }
+}
+
 /// The least-squares slope of `log e` against `log h`: the observed order
 /// of convergence of errors `e` at steps `h`.
 pub fn log_slope(h: &[f64], e: &[f64]) -> f64 {
