@@ -7,7 +7,8 @@
 //! output (the table, the figure, the figure's CSV) is the scene or
 //! another output, and that the figure's format and directory are usable.
 
-use super::{Failure, SceneOptions, Streams, write_out};
+use super::table_output::{TableFormat, TableOutput};
+use super::{Failure, SceneOptions, Streams};
 use crate::bench::{self, BenchOptions, SpringKinds, table};
 use clap::Args;
 use std::path::PathBuf;
@@ -38,23 +39,10 @@ pub(crate) struct BenchArgs {
     /// Only the free-ended spring.
     #[arg(long)]
     free: bool,
-    /// Print one JSON object instead of the table.
-    #[arg(long, conflicts_with = "csv")]
-    json: bool,
-    /// Print one CSV row per stiffness and spring instead of the table.
-    #[arg(long)]
-    csv: bool,
-    /// Write the output to this file (atomically, only after success);
-    /// a name ending in .json or .csv chooses that format.
-    #[arg(short, long)]
-    output: Option<PathBuf>,
-    /// Also draw the spring force against stiffness: .svg, .pdf or .png,
-    /// with its data as .csv beside it.
-    #[arg(long, value_name = "FILE")]
-    figure: Option<PathBuf>,
-    /// Print preset of the figure (default: single-column).
-    #[arg(long, value_parser = ["single-column", "double-column", "slide"])]
-    style: Option<String>,
+    /// The table (one CSV row per stiffness and spring) and the figure
+    /// of the spring force against stiffness.
+    #[command(flatten)]
+    out: TableOutput,
     #[command(flatten)]
     options: SceneOptions,
     #[command(flatten)]
@@ -75,44 +63,21 @@ pub(crate) fn bench(args: BenchArgs, streams: &mut Streams<'_>) -> Result<(), Fa
     };
     options.validate().map_err(|e| e.to_string())?;
     let mut scene = super::load_scene(args.scene.as_deref(), &args.set)?;
-    super::check_table_outputs(
-        args.scene.as_deref(),
-        args.output.as_deref(),
-        args.figure.as_deref(),
-    )?;
+    args.out.check(args.scene.as_deref())?;
     args.options.apply(&mut scene, streams);
     let b = bench::bench(&scene, &options).map_err(|e| e.to_string())?;
-    let json = args.json
-        || args
-            .output
-            .as_deref()
-            .is_some_and(|o| !args.csv && super::extension_is(o, "json"));
-    let csv = !json
-        && (args.csv
-            || args
-                .output
-                .as_deref()
-                .is_some_and(|o| super::extension_is(o, "csv")));
-    let text = if json {
-        let mut t =
-            serde_json::to_string_pretty(&table::to_json(&b, &scene)).map_err(|e| e.to_string())?;
-        t.push('\n');
-        t
-    } else if csv {
-        table::to_csv(&b, &scene)
-    } else {
-        table::to_text(&b)
+    let text = match args.out.format() {
+        TableFormat::Json => {
+            let mut t = serde_json::to_string_pretty(&table::to_json(&b, &scene))
+                .map_err(|e| e.to_string())?;
+            t.push('\n');
+            t
+        }
+        TableFormat::Csv => table::to_csv(&b, &scene),
+        TableFormat::Text => table::to_text(&b),
     };
-    if let Some(path) = &args.figure {
-        let name = path
-            .file_stem()
-            .map_or("bench".to_owned(), |s| s.to_string_lossy().into_owned());
-        let figure = crate::plot::bench::figure(&b, &scene, &name).map_err(|e| e.to_string())?;
-        super::write_figure(&figure, args.style.as_deref(), path)?;
-    }
-    match &args.output {
-        Some(path) => crate::output::write_atomically(path, text.as_bytes())
-            .map_err(|e| format!("cannot write {}: {e}", path.display())),
-        None => write_out(streams, &text),
-    }
+    args.out.figure("bench", |name| {
+        crate::plot::bench::figure(&b, &scene, name).map_err(|e| e.to_string())
+    })?;
+    args.out.write(streams, &text)
 }

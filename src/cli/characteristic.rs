@@ -8,7 +8,8 @@
 //! output (the table, the figure, the figure's CSV) is the scene or
 //! another output, and that the figure's format and directory are usable.
 
-use super::{Failure, SceneOptions, Streams, write_out};
+use super::table_output::{TableFormat, TableOutput};
+use super::{Failure, SceneOptions, Streams};
 use crate::characteristic::{self, CharacteristicOptions, LoadAxis, table};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
@@ -27,23 +28,10 @@ enum LoadArg {
 pub(crate) struct CharacteristicArgs {
     /// Scene file (TOML); omitted: the built-in default scene.
     scene: Option<PathBuf>,
-    /// Print one JSON object instead of the summary.
-    #[arg(long, conflicts_with = "csv")]
-    json: bool,
-    /// Print the points as CSV instead of the summary.
-    #[arg(long)]
-    csv: bool,
-    /// Write the output to this file (atomically, only after success);
-    /// a name ending in .json or .csv chooses that format.
-    #[arg(short, long)]
-    output: Option<PathBuf>,
-    /// Also draw the characteristic: .svg, .pdf or .png, with its data as
-    /// .csv beside it.
-    #[arg(long, value_name = "FILE")]
-    figure: Option<PathBuf>,
-    /// Print preset of the figure (default: single-column).
-    #[arg(long, value_parser = ["single-column", "double-column", "slide"])]
-    style: Option<String>,
+    /// The table (the summary, or the points as CSV) and the figure of
+    /// the characteristic.
+    #[command(flatten)]
+    out: TableOutput,
     /// The load: a force, or the slider's weight on an incline.
     #[arg(long, value_enum, default_value = "force")]
     load: LoadArg,
@@ -66,14 +54,6 @@ pub(crate) struct CharacteristicArgs {
     set: super::SceneSet,
 }
 
-/// The format of the table.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum TableFormat {
-    Text,
-    Json,
-    Csv,
-}
-
 pub(crate) fn characteristic(
     args: CharacteristicArgs,
     streams: &mut Streams<'_>,
@@ -93,31 +73,10 @@ pub(crate) fn characteristic(
         max_evaluations: args.max_evaluations,
     };
     options.validate().map_err(|e| e.to_string())?;
-    super::check_table_outputs(
-        args.scene.as_deref(),
-        args.output.as_deref(),
-        args.figure.as_deref(),
-    )?;
+    args.out.check(args.scene.as_deref())?;
     args.options.apply(&mut scene, streams);
     let c = characteristic::characteristic(&scene, &options).map_err(|e| e.to_string())?;
-    let format = if args.json
-        || args
-            .output
-            .as_deref()
-            .is_some_and(|o| !args.csv && super::extension_is(o, "json"))
-    {
-        TableFormat::Json
-    } else if args.csv
-        || args
-            .output
-            .as_deref()
-            .is_some_and(|o| super::extension_is(o, "csv"))
-    {
-        TableFormat::Csv
-    } else {
-        TableFormat::Text
-    };
-    let text = match format {
+    let text = match args.out.format() {
         TableFormat::Json => {
             let mut t = serde_json::to_string_pretty(&table::to_json(&c, &scene))
                 .map_err(|e| e.to_string())?;
@@ -127,17 +86,8 @@ pub(crate) fn characteristic(
         TableFormat::Csv => table::to_csv(&c, &scene),
         TableFormat::Text => table::to_text(&c),
     };
-    if let Some(path) = &args.figure {
-        let name = path.file_stem().map_or("characteristic".to_owned(), |s| {
-            s.to_string_lossy().into_owned()
-        });
-        let figure =
-            crate::plot::characteristic::figure(&c, &scene, &name).map_err(|e| e.to_string())?;
-        super::write_figure(&figure, args.style.as_deref(), path)?;
-    }
-    match &args.output {
-        Some(path) => crate::output::write_atomically(path, text.as_bytes())
-            .map_err(|e| format!("cannot write {}: {e}", path.display())),
-        None => write_out(streams, &text),
-    }
+    args.out.figure("characteristic", |name| {
+        crate::plot::characteristic::figure(&c, &scene, name).map_err(|e| e.to_string())
+    })?;
+    args.out.write(streams, &text)
 }

@@ -35,6 +35,7 @@ mod plot;
 mod run;
 mod signal;
 mod sweep;
+mod table_output;
 
 use clap::{Args, Parser, Subcommand};
 use std::io::Write;
