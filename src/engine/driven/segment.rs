@@ -227,13 +227,10 @@ impl ModeFunctions {
     /// `v_rel(s) = v_R(tau + s) - v_S - a_s s`.
     fn v_rel(&self, tau: f64, rod: Kinematics, slider: &SliderMotion) -> ExpTrig {
         let (poly, slider_osc) = slider.negative_velocity();
-        // The rod's free oscillation (zero for a prescribed rod, which
-        // leaves its place to the slider's) and a slider's on a spring.
+        // The rod's free oscillation (none for a prescribed rod) and a
+        // slider's on a spring.
         let rod_osc = self.has_free.then(|| self.free(tau, rod).derivative());
-        let osc = match (rod_osc, slider_osc) {
-            (None, None) => [Some(self.free(tau, rod).derivative()), None],
-            (rod, slider) => [rod.or(slider), rod.and(slider)],
-        };
+        let osc = [rod_osc.or(slider_osc), rod_osc.and(slider_osc)];
         ExpTrig {
             poly,
             w: self.w,
