@@ -279,10 +279,21 @@ impl<'s> DrivenEngine<'s> {
     /// stuck system's acceleration, with a spring's force over `m_s` added
     /// (`slider.rs`).
     fn edges(&self, tau: f64, rod: Kinematics, place: (bool, f64)) -> [ExpTrig; 2] {
-        let stick = self.stick_functions(place);
+        self.edges_of(&self.stick_functions(place), tau, rod, place)
+    }
+
+    /// [`Self::edges`] from the stick mode's functions at `place`, built
+    /// by the caller.
+    fn edges_of(
+        &self,
+        stick: &ModeFunctions,
+        tau: f64,
+        rod: Kinematics,
+        place: (bool, f64),
+    ) -> [ExpTrig; 2] {
         let band = [self.contact.a_plus, self.contact.a_minus];
         match &self.spring {
-            Some(law) => law.stuck_functions(&stick, tau, rod, place, band),
+            Some(law) => law.stuck_functions(stick, tau, rod, place, band),
             None => stick.edge_functions(tau, rod.x, rod.v, [band[1], band[0]]),
         }
     }
@@ -422,7 +433,7 @@ impl<'s> DrivenEngine<'s> {
         let functions = functions.as_ref();
         let span = self.period - walk.tau;
         let exit = ModeFunctions::stick_exit(
-            self.edges(walk.tau, walk.rod, walk.place()),
+            self.edges_of(functions, walk.tau, walk.rod, walk.place()),
             walk.tau,
             span,
             &mut self.counters,
